@@ -1,0 +1,69 @@
+#pragma once
+// The element-test driver: one material point taken through stages of mixed strain/stress
+// control (scene kind "element-test"). Each step prescribes the strain increment of the
+// strain-controlled components and solves for the others by a Newton iteration on the stress
+// targets, with the tangent by perturbation of the integrated update (the 6 perturbed updates
+// are lanes of one batched update, like the contact points' perturbations) or the model's
+// cheap rate stiffness.
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "engine/batched_update.hpp"
+#include "engine/material_choice.hpp"
+
+namespace ifsim {
+
+struct ElementStage {
+    int steps = 1;
+    std::array<bool, 6> stress_controlled{}; // true: dsig_IJ given, false: deps_IJ given
+    Sym<double> change{};                    // total change over the stage (strain or stress)
+};
+
+enum class TangentKind { perturbation, rate };
+
+struct ElementTestSettings {
+    UpdateOptions update;                   // SIMD/scalar, integration tolerance etc.
+    TangentKind tangent = TangentKind::perturbation;
+    double newton_tolerance = 1.0e-8;       // stress residual / max(|sigma|, 1 kPa)
+    int max_newton_iterations = 40;
+    double perturbation = 1.0e-7;           // relative strain perturbation of the tangent
+};
+
+struct ElementRow {
+    int step = 0;
+    int stage = 0;
+    Sym<double> strain{};
+    std::vector<double> state; // the model's flat state (model_api.hpp layout)
+};
+
+struct ElementTestCounters {
+    long increments = 0;
+    long newton_iterations = 0;
+    double substeps = 0.0;
+    double rejected_substeps = 0.0;
+    double rate_evaluations = 0.0;
+    long constitutive_evaluations = 0;
+    long unreliable_updates = 0; // a safeguard (pressure floor / tension cut-off) acted
+};
+
+struct ElementTestResult {
+    bool ok = true;
+    std::string reason; // why it failed (step, stage, what)
+    ElementTestCounters counters;
+    double constitutive_seconds = 0.0; // time inside the batched updates
+    double driver_seconds = 0.0;       // Newton bookkeeping around them
+};
+
+// Runs all stages from the initial state. on_row is called for step 0 and after every step;
+// a failure stops the run with result.ok = false and a reason naming step and stage. Throws
+// std::invalid_argument for an initial state of the wrong length.
+ElementTestResult run_element_test(const MaterialChoice& material,
+                                   const std::vector<double>& initial_state,
+                                   const std::vector<ElementStage>& stages,
+                                   const ElementTestSettings& settings,
+                                   const std::function<void(const ElementRow&)>& on_row);
+
+} // namespace ifsim

@@ -1,0 +1,109 @@
+#pragma once
+// What every constitutive model of ifsim provides, and the per-lane results of an update.
+//
+// State layout (one flat array per point, the engine stores one SoA column per entry):
+//   [0..5]  stress (kPa, Voigt 11 22 33 12 13 23, compression negative)
+//   [6]     void ratio e
+//   [7..]   model state (intergranular strain h, back-stress ratio alpha, fabric z, ...)
+//
+// A model is a struct with
+//   static constexpr int n_state;               // length of the flat state
+//   static constexpr const char* name;
+//   using Params = ...;                          // plain doubles, shared by a batch
+//   template <class T> static void update(const Params&, const IntegrationSettings&,
+//                                         State<T>& y, const Sym<T>& deps, UpdateStats<T>&);
+// update() integrates the strain increment deps from y in place; it never throws, allocates or
+// prints. Failure is reported per lane in UpdateStats::status.
+
+#include <array>
+#include <concepts>
+#include <cstddef>
+
+#include "kernels/voigt.hpp"
+
+namespace ifsim {
+
+template <class T, std::size_t N>
+using StateVec = std::array<T, N>;
+
+namespace state_index {
+inline constexpr int stress = 0;
+inline constexpr int void_ratio = 6;
+inline constexpr int model = 7;
+} // namespace state_index
+
+// Lane status codes (MGIS style): stored as doubles in the lanes.
+namespace lane_status {
+inline constexpr double failed = -1.0;    // no usable result: state left unchanged
+inline constexpr double unreliable = 0.0; // a safeguard acted (tension cut-off, step floor)
+inline constexpr double ok = 1.0;
+} // namespace lane_status
+
+struct IntegrationSettings {
+    double tolerance = 1.0e-3;       // accepted relative local error of one substep
+    double min_substep = 1.0e-9;     // smallest substep, as a fraction of the increment
+    int max_substeps = 200000;       // guard against runaway step collapse
+    double min_pressure = 1.0e-3;    // kPa; below this mean stress the tension cut-off acts
+    double max_step_growth = 2.0;    // largest growth factor of the substep size
+    double min_step_shrink = 0.1;    // smallest shrink factor of the substep size
+};
+
+template <class T>
+struct UpdateStats {
+    T status = T(lane_status::ok);
+    T substeps = T(0.0);          // accepted substeps
+    T rejected = T(0.0);          // rejected substeps
+    T rate_evaluations = T(0.0);  // evaluations of the rate equations
+};
+
+template <class M>
+concept ConstitutiveModel = requires {
+    typename M::Params;
+    { M::n_state } -> std::convertible_to<int>;
+    { M::name } -> std::convertible_to<const char*>;
+};
+
+template <class T, std::size_t N>
+inline Sym<T> stress_of(const StateVec<T, N>& y) {
+    return {y[0], y[1], y[2], y[3], y[4], y[5]};
+}
+template <class T, std::size_t N>
+inline void set_stress(StateVec<T, N>& y, const Sym<T>& s) {
+    for (int i = 0; i < 6; ++i) {
+        y[i] = s[i];
+    }
+}
+template <class T, std::size_t N>
+inline Sym<T> sym_at(const StateVec<T, N>& y, int offset) {
+    return {y[offset], y[offset + 1], y[offset + 2], y[offset + 3], y[offset + 4], y[offset + 5]};
+}
+template <class T, std::size_t N>
+inline void set_sym_at(StateVec<T, N>& y, int offset, const Sym<T>& s) {
+    for (int i = 0; i < 6; ++i) {
+        y[offset + i] = s[i];
+    }
+}
+template <class T, std::size_t N>
+inline StateVec<T, N> select_state(const simd::mask_t<T>& m, const StateVec<T, N>& a,
+                                   const StateVec<T, N>& b) {
+    StateVec<T, N> r;
+    for (std::size_t i = 0; i < N; ++i) {
+        r[i] = simd::select(m, a[i], b[i]);
+    }
+    return r;
+}
+template <class T, std::size_t N>
+inline simd::mask_t<T> state_finite(const StateVec<T, N>& y) {
+    auto m = simd::isfinite(y[0]);
+    for (std::size_t i = 1; i < N; ++i) {
+        m = m && simd::isfinite(y[i]);
+    }
+    return m;
+}
+// Mean pressure p = -tr(sigma)/3, positive in compression.
+template <class T>
+inline T mean_pressure(const Sym<T>& s) {
+    return -(s[0] + s[1] + s[2]) * (1.0 / 3.0);
+}
+
+} // namespace ifsim
