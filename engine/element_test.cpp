@@ -1,0 +1,316 @@
+#include "engine/element_test.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+namespace ifsim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Drives one material point of model M; owns a small SoA batch whose lanes are the base
+// update and its perturbations.
+template <class M>
+class ElementDriver {
+public:
+    static constexpr int N = M::n_state;
+    using State = StateVec<double, N>;
+
+    ElementDriver(const typename M::Params& params, const ElementTestSettings& settings,
+                  ElementTestResult& result)
+        : params_(params), settings_(settings), result_(result), points_(7) {}
+
+    // Integrates deps from y into out (base lane, adaptive). Returns status and substeps.
+    struct Eval {
+        State y;
+        double status = 1.0;
+        double substeps = 0.0;
+    };
+
+    Eval evaluate(const State& y, const Sym<double>& deps) {
+        points_.set_state(0, y);
+        points_.set_deps(0, deps);
+        points_.fixed_substeps()[0] = 0.0;
+        for (std::size_t i = 1; i < points_.size(); ++i) {
+            points_.set_state(i, y);
+            points_.set_deps(i, Sym<double>{});
+            points_.fixed_substeps()[i] = 0.0;
+        }
+        run(1);
+        Eval ev;
+        ev.y = points_.trial_state(0);
+        ev.status = points_.status()[0];
+        ev.substeps = points_.substeps()[0];
+        return ev;
+    }
+
+    // Columns d(sigma_u)/d(deps_u) for the unknown components, by perturbation of the
+    // integrated update: the base and the perturbed updates are lanes of one batch and all take
+    // the base's number of equal substeps, so the difference quotient sees no step-selection noise.
+    Eigen::MatrixXd perturbation_jacobian(const State& y, const Sym<double>& deps,
+                                          const std::vector<int>& unknown, double base_substeps) {
+        const double scale = std::max(voigt::norm(deps), 1.0e-6);
+        const double delta = settings_.perturbation * scale;
+        const double n_fixed = std::max(1.0, base_substeps);
+        for (std::size_t i = 0; i < points_.size(); ++i) {
+            Sym<double> d = deps;
+            if (i >= 1 && i <= unknown.size()) {
+                d[unknown[i - 1]] += delta;
+            }
+            points_.set_state(i, y);
+            points_.set_deps(i, d);
+            points_.fixed_substeps()[i] = n_fixed;
+        }
+        run(static_cast<long>(unknown.size()) + 1);
+        const int u = static_cast<int>(unknown.size());
+        Eigen::MatrixXd J(u, u);
+        const State base = points_.trial_state(0);
+        for (int c = 0; c < u; ++c) {
+            const State pert = points_.trial_state(c + 1);
+            for (int r = 0; r < u; ++r) {
+                J(r, c) = (pert[unknown[r]] - base[unknown[r]]) / delta;
+            }
+        }
+        return J;
+    }
+
+    Eigen::MatrixXd rate_jacobian(const State& y, const Sym<double>& deps,
+                                  const std::vector<int>& unknown) {
+        const auto cols = M::template rate_stiffness<double>(params_, settings_.update.settings, y, deps);
+        const int u = static_cast<int>(unknown.size());
+        Eigen::MatrixXd J(u, u);
+        for (int c = 0; c < u; ++c) {
+            for (int r = 0; r < u; ++r) {
+                J(r, c) = cols[unknown[c]][unknown[r]];
+            }
+        }
+        return J;
+    }
+
+private:
+    void run(long evaluations) {
+        const auto t0 = Clock::now();
+        const UpdateReport rep = batched_update(points_, params_, settings_.update);
+        result_.constitutive_seconds += seconds_since(t0);
+        (void)rep;
+        result_.counters.constitutive_evaluations += evaluations;
+        // Only the lanes in use count (the batch holds 7 points, padding ignored).
+        for (long i = 0; i < evaluations; ++i) {
+            result_.counters.substeps += points_.substeps()[i];
+            result_.counters.rejected_substeps += points_.rejected()[i];
+            result_.counters.rate_evaluations += points_.rate_evaluations()[i];
+        }
+    }
+
+    const typename M::Params& params_;
+    const ElementTestSettings& settings_;
+    ElementTestResult& result_;
+    MaterialPoints<M> points_;
+};
+
+// Outcome of one attempted step: converged state or a reason.
+template <class M>
+struct StepOutcome {
+    bool ok = false;
+    StateVec<double, M::n_state> y{};
+    Sym<double> deps{};
+    std::string reason;
+    bool unreliable = false;
+};
+
+template <class M>
+StepOutcome<M> solve_step(ElementDriver<M>& drv, const ElementTestSettings& settings,
+                          const StateVec<double, M::n_state>& y0, const Sym<double>& deps_known,
+                          const std::array<bool, 6>& stress_ctl, const Sym<double>& target,
+                          Sym<double> guess, ElementTestResult& result) {
+    StepOutcome<M> out;
+    std::vector<int> unknown;
+    for (int j = 0; j < 6; ++j) {
+        if (stress_ctl[j]) {
+            unknown.push_back(j);
+        }
+    }
+    Sym<double> deps = deps_known;
+    for (int j : unknown) {
+        deps[j] = guess[j];
+    }
+    for (int it = 0; it <= settings.max_newton_iterations; ++it) {
+        const auto ev = drv.evaluate(y0, deps);
+        if (ev.status < -0.5) {
+            out.reason = "the constitutive update failed (non-finite state or runaway substepping)";
+            return out;
+        }
+        if (unknown.empty()) {
+            out.ok = true;
+            out.y = ev.y;
+            out.deps = deps;
+            out.unreliable = ev.status < 0.5;
+            return out;
+        }
+        double res_max = 0.0;
+        double stress_scale = 1.0;
+        Eigen::VectorXd r(static_cast<Eigen::Index>(unknown.size()));
+        for (std::size_t k = 0; k < unknown.size(); ++k) {
+            r(static_cast<Eigen::Index>(k)) = ev.y[unknown[k]] - target[unknown[k]];
+            res_max = std::max(res_max, std::abs(r(static_cast<Eigen::Index>(k))));
+        }
+        for (int j = 0; j < 6; ++j) {
+            stress_scale = std::max(stress_scale, std::abs(ev.y[j]));
+        }
+        if (res_max <= settings.newton_tolerance * stress_scale) {
+            out.ok = true;
+            out.y = ev.y;
+            out.deps = deps;
+            out.unreliable = ev.status < 0.5;
+            return out;
+        }
+        if (it == settings.max_newton_iterations) {
+            break;
+        }
+        ++result.counters.newton_iterations;
+        const Eigen::MatrixXd J = settings.tangent == TangentKind::perturbation
+                                      ? drv.perturbation_jacobian(y0, deps, unknown, ev.substeps)
+                                      : drv.rate_jacobian(y0, deps, unknown);
+        const Eigen::FullPivLU<Eigen::MatrixXd> lu(J);
+        if (!lu.isInvertible() || !J.allFinite()) {
+            out.reason = "singular tangent for the stress-controlled components";
+            return out;
+        }
+        const Eigen::VectorXd dx = lu.solve(-r);
+        if (!dx.allFinite()) {
+            out.reason = "non-finite Newton correction";
+            return out;
+        }
+        for (std::size_t k = 0; k < unknown.size(); ++k) {
+            deps[unknown[k]] += dx(static_cast<Eigen::Index>(k));
+        }
+    }
+    out.reason = fmt::format("the Newton iteration on the stress-controlled components did not "
+                             "converge in {} iterations",
+                             settings.max_newton_iterations);
+    return out;
+}
+
+template <class M>
+ElementTestResult run_typed(const typename M::Params& params, const std::vector<double>& initial,
+                            const std::vector<ElementStage>& stages,
+                            const ElementTestSettings& settings,
+                            const std::function<void(const ElementRow&)>& on_row) {
+    constexpr int N = M::n_state;
+    ElementTestResult result;
+    if (static_cast<int>(initial.size()) != N) {
+        throw std::invalid_argument(fmt::format("initial state of model {} needs {} values, got {}",
+                                                M::name, N, initial.size()));
+    }
+    const auto t_start = Clock::now();
+    ElementDriver<M> drv(params, settings, result);
+    StateVec<double, N> y{};
+    for (int k = 0; k < N; ++k) {
+        y[k] = initial[k];
+    }
+    Sym<double> strain{};
+    ElementRow row;
+    row.state.assign(initial.begin(), initial.end());
+    on_row(row);
+
+    // Largest number of halvings of one step before the run gives up.
+    constexpr int max_cuts = 6;
+    int step = 0;
+    for (std::size_t s = 0; s < stages.size(); ++s) {
+        const ElementStage& st = stages[s];
+        const Sym<double> stress_start = stress_of(y);
+        Sym<double> guess{};
+        for (int k = 1; k <= st.steps; ++k) {
+            Sym<double> deps_known{};
+            Sym<double> target{};
+            for (int j = 0; j < 6; ++j) {
+                if (st.stress_controlled[j]) {
+                    target[j] = stress_start[j] + st.change[j] * k / st.steps;
+                } else {
+                    deps_known[j] = st.change[j] / st.steps;
+                }
+            }
+            // Try the whole step; on failure cut it into 2^c equal parts.
+            bool done = false;
+            std::string reason;
+            for (int cut = 0; cut <= max_cuts && !done; ++cut) {
+                const int parts = 1 << cut;
+                StateVec<double, N> yc = y;
+                Sym<double> strain_c = strain;
+                Sym<double> guess_c = voigt::scale(guess, 1.0 / parts);
+                bool ok = true;
+                bool unreliable = false;
+                const Sym<double> sig_from = stress_of(y);
+                for (int part = 1; part <= parts && ok; ++part) {
+                    Sym<double> tgt{};
+                    for (int j = 0; j < 6; ++j) {
+                        tgt[j] = sig_from[j] + (target[j] - sig_from[j]) * part / parts;
+                    }
+                    const auto res = solve_step<M>(drv, settings, yc,
+                                                   voigt::scale(deps_known, 1.0 / parts),
+                                                   st.stress_controlled, tgt, guess_c, result);
+                    if (!res.ok) {
+                        ok = false;
+                        reason = res.reason;
+                        break;
+                    }
+                    unreliable = unreliable || res.unreliable;
+                    yc = res.y;
+                    strain_c = voigt::add(strain_c, res.deps);
+                    guess_c = res.deps;
+                }
+                if (ok) {
+                    done = true;
+                    guess = voigt::sub(strain_c, strain);
+                    y = yc;
+                    strain = strain_c;
+                    if (unreliable) {
+                        ++result.counters.unreliable_updates;
+                    }
+                }
+            }
+            ++step;
+            ++result.counters.increments;
+            if (!done) {
+                result.ok = false;
+                result.reason = fmt::format("step {} (stage {}, step {} of {}): {} (also after "
+                                            "cutting the step into {} parts)",
+                                            step, s + 1, k, st.steps, reason, 1 << max_cuts);
+                result.driver_seconds = seconds_since(t_start) - result.constitutive_seconds;
+                return result;
+            }
+            row.step = step;
+            row.stage = static_cast<int>(s) + 1;
+            row.strain = strain;
+            row.state.assign(y.begin(), y.end());
+            on_row(row);
+        }
+    }
+    result.driver_seconds = seconds_since(t_start) - result.constitutive_seconds;
+    return result;
+}
+
+} // namespace
+
+ElementTestResult run_element_test(const MaterialChoice& material,
+                                   const std::vector<double>& initial_state,
+                                   const std::vector<ElementStage>& stages,
+                                   const ElementTestSettings& settings,
+                                   const std::function<void(const ElementRow&)>& on_row) {
+    return std::visit(
+        [&](const auto& params) {
+            using M = typename model_of<std::decay_t<decltype(params)>>::type;
+            return run_typed<M>(params, initial_state, stages, settings, on_row);
+        },
+        material);
+}
+
+} // namespace ifsim
