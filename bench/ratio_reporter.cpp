@@ -8,7 +8,7 @@ namespace ifsim::bench {
 void RatioReporter::ReportRuns(const std::vector<Run>& runs) {
     ConsoleReporter::ReportRuns(runs);
     for (const auto& r : runs) {
-        if (r.run_type != Run::RT_Iteration || r.skipped) {
+        if (r.run_type != Run::RT_Iteration || r.error_occurred) {
             continue;
         }
         const auto it = r.counters.find(counter_);
@@ -39,8 +39,7 @@ void RatioReporter::Finalize() {
         const double s1 = get(0, 1), v1 = get(1, 1), s2 = get(0, 2), v2 = get(1, 2);
         auto ratio = [](double a, double b) { return b > 0.0 && a > 0.0 ? a / b : 0.0; };
         std::printf("%-28s %9s %14.2f %14.2f %14.2f %14.2f\n", m[1].str().c_str(),
-                    m[2].str().c_str(), ratio(v1, s1), ratio(v2, s2), ratio(v2, v1),
-                    ratio(s2, s1));
+                    m[2].str().c_str(), ratio(v1, s1), ratio(v2, s2), ratio(v2, v1), ratio(s2, s1));
         (void)rate;
     }
     std::printf("(ratios of %s measured in this run; 0.00 = a configuration was not run)\n",

@@ -19,16 +19,16 @@
 namespace ifsim {
 
 struct UpdateOptions {
-    bool simd = true;              // false: the scalar reference path
+    bool simd = true;               // false: the scalar reference path
     std::size_t chunk_points = 256; // points per TBB task (rounded up to the lane width)
     IntegrationSettings settings;
-    double initial_substep = 1.0;  // first substep as a fraction of the increment
+    double initial_substep = 1.0; // first substep as a fraction of the increment
 };
 
 struct UpdateReport {
-    std::size_t points = 0;           // points updated (= constitutive evaluations)
-    std::size_t failed = 0;           // points with status failed
-    std::size_t unreliable = 0;       // points where a safeguard acted
+    std::size_t points = 0;     // points updated (= constitutive evaluations)
+    std::size_t failed = 0;     // points with status failed
+    std::size_t unreliable = 0; // points where a safeguard acted
     std::size_t first_failed = std::numeric_limits<std::size_t>::max();
     double substeps = 0.0;
     double rejected = 0.0;
@@ -39,8 +39,8 @@ struct UpdateReport {
 namespace detail {
 
 template <class M, class T>
-void update_range(MaterialPoints<M>& mp, const typename M::Params& params,
-                  const UpdateOptions& opt, std::size_t begin, std::size_t end) {
+void update_range(MaterialPoints<M>& mp, const typename M::Params& params, const UpdateOptions& opt,
+                  std::size_t begin, std::size_t end) {
     constexpr int N = M::n_state;
     constexpr std::size_t W = simd::width_v<T>;
     for (std::size_t i = begin; i < end; i += W) {

@@ -1,5 +1,7 @@
 #include "engine/element_test.hpp"
 
+#include "engine/point_evaluator.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -16,105 +18,14 @@ double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// Drives one material point of model M; owns a small SoA batch whose lanes are the base
-// update and its perturbations.
-template <class M>
-class ElementDriver {
-public:
-    static constexpr int N = M::n_state;
-    using State = StateVec<double, N>;
-
-    ElementDriver(const typename M::Params& params, const ElementTestSettings& settings,
-                  ElementTestResult& result)
-        : params_(params), settings_(settings), result_(result), points_(7) {}
-
-    // Integrates deps from y into out (base lane, adaptive). Returns status and substeps.
-    struct Eval {
-        State y;
-        double status = 1.0;
-        double substeps = 0.0;
-    };
-
-    Eval evaluate(const State& y, const Sym<double>& deps) {
-        points_.set_state(0, y);
-        points_.set_deps(0, deps);
-        points_.fixed_substeps()[0] = 0.0;
-        for (std::size_t i = 1; i < points_.size(); ++i) {
-            points_.set_state(i, y);
-            points_.set_deps(i, Sym<double>{});
-            points_.fixed_substeps()[i] = 0.0;
-        }
-        run(1);
-        Eval ev;
-        ev.y = points_.trial_state(0);
-        ev.status = points_.status()[0];
-        ev.substeps = points_.substeps()[0];
-        return ev;
-    }
-
-    // Columns d(sigma_u)/d(deps_u) for the unknown components, by perturbation of the
-    // integrated update: the base and the perturbed updates are lanes of one batch and all take
-    // the base's number of equal substeps, so the difference quotient sees no step-selection noise.
-    Eigen::MatrixXd perturbation_jacobian(const State& y, const Sym<double>& deps,
-                                          const std::vector<int>& unknown, double base_substeps) {
-        const double scale = std::max(voigt::norm(deps), 1.0e-6);
-        const double delta = settings_.perturbation * scale;
-        const double n_fixed = std::max(1.0, base_substeps);
-        for (std::size_t i = 0; i < points_.size(); ++i) {
-            Sym<double> d = deps;
-            if (i >= 1 && i <= unknown.size()) {
-                d[unknown[i - 1]] += delta;
-            }
-            points_.set_state(i, y);
-            points_.set_deps(i, d);
-            points_.fixed_substeps()[i] = n_fixed;
-        }
-        run(static_cast<long>(unknown.size()) + 1);
-        const int u = static_cast<int>(unknown.size());
-        Eigen::MatrixXd J(u, u);
-        const State base = points_.trial_state(0);
-        for (int c = 0; c < u; ++c) {
-            const State pert = points_.trial_state(c + 1);
-            for (int r = 0; r < u; ++r) {
-                J(r, c) = (pert[unknown[r]] - base[unknown[r]]) / delta;
-            }
-        }
-        return J;
-    }
-
-    Eigen::MatrixXd rate_jacobian(const State& y, const Sym<double>& deps,
-                                  const std::vector<int>& unknown) {
-        const auto cols = M::template rate_stiffness<double>(params_, settings_.update.settings, y, deps);
-        const int u = static_cast<int>(unknown.size());
-        Eigen::MatrixXd J(u, u);
-        for (int c = 0; c < u; ++c) {
-            for (int r = 0; r < u; ++r) {
-                J(r, c) = cols[unknown[c]][unknown[r]];
-            }
-        }
-        return J;
-    }
-
-private:
-    void run(long evaluations) {
-        const auto t0 = Clock::now();
-        const UpdateReport rep = batched_update(points_, params_, settings_.update);
-        result_.constitutive_seconds += seconds_since(t0);
-        (void)rep;
-        result_.counters.constitutive_evaluations += evaluations;
-        // Only the lanes in use count (the batch holds 7 points, padding ignored).
-        for (long i = 0; i < evaluations; ++i) {
-            result_.counters.substeps += points_.substeps()[i];
-            result_.counters.rejected_substeps += points_.rejected()[i];
-            result_.counters.rate_evaluations += points_.rate_evaluations()[i];
-        }
-    }
-
-    const typename M::Params& params_;
-    const ElementTestSettings& settings_;
-    ElementTestResult& result_;
-    MaterialPoints<M> points_;
-};
+void finish(ElementTestResult& result, const PointCounters& pc, Clock::time_point t_start) {
+    result.counters.constitutive_evaluations = pc.constitutive_evaluations;
+    result.counters.substeps = pc.substeps;
+    result.counters.rejected_substeps = pc.rejected_substeps;
+    result.counters.rate_evaluations = pc.rate_evaluations;
+    result.constitutive_seconds = pc.seconds;
+    result.driver_seconds = seconds_since(t_start) - pc.seconds;
+}
 
 // Outcome of one attempted step: converged state or a reason.
 template <class M>
@@ -127,7 +38,7 @@ struct StepOutcome {
 };
 
 template <class M>
-StepOutcome<M> solve_step(ElementDriver<M>& drv, const ElementTestSettings& settings,
+StepOutcome<M> solve_step(PointEvaluator<M>& drv, const ElementTestSettings& settings,
                           const StateVec<double, M::n_state>& y0, const Sym<double>& deps_known,
                           const std::array<bool, 6>& stress_ctl, const Sym<double>& target,
                           Sym<double> guess, ElementTestResult& result) {
@@ -176,9 +87,10 @@ StepOutcome<M> solve_step(ElementDriver<M>& drv, const ElementTestSettings& sett
             break;
         }
         ++result.counters.newton_iterations;
-        const Eigen::MatrixXd J = settings.tangent == TangentKind::perturbation
-                                      ? drv.perturbation_jacobian(y0, deps, unknown, ev.substeps)
-                                      : drv.rate_jacobian(y0, deps, unknown);
+        const Eigen::MatrixXd J =
+            settings.tangent == TangentKind::perturbation
+                ? drv.jacobian(y0, deps, unknown, unknown, ev.substeps, settings.perturbation)
+                : drv.rate_jacobian(y0, deps, unknown, unknown);
         const Eigen::FullPivLU<Eigen::MatrixXd> lu(J);
         if (!lu.isInvertible() || !J.allFinite()) {
             out.reason = "singular tangent for the stress-controlled components";
@@ -211,7 +123,8 @@ ElementTestResult run_typed(const typename M::Params& params, const std::vector<
                                                 M::name, N, initial.size()));
     }
     const auto t_start = Clock::now();
-    ElementDriver<M> drv(params, settings, result);
+    PointCounters pc;
+    PointEvaluator<M> drv(params, settings.update, pc);
     StateVec<double, N> y{};
     for (int k = 0; k < N; ++k) {
         y[k] = initial[k];
@@ -254,9 +167,9 @@ ElementTestResult run_typed(const typename M::Params& params, const std::vector<
                     for (int j = 0; j < 6; ++j) {
                         tgt[j] = sig_from[j] + (target[j] - sig_from[j]) * part / parts;
                     }
-                    const auto res = solve_step<M>(drv, settings, yc,
-                                                   voigt::scale(deps_known, 1.0 / parts),
-                                                   st.stress_controlled, tgt, guess_c, result);
+                    const auto res =
+                        solve_step<M>(drv, settings, yc, voigt::scale(deps_known, 1.0 / parts),
+                                      st.stress_controlled, tgt, guess_c, result);
                     if (!res.ok) {
                         ok = false;
                         reason = res.reason;
@@ -284,7 +197,7 @@ ElementTestResult run_typed(const typename M::Params& params, const std::vector<
                 result.reason = fmt::format("step {} (stage {}, step {} of {}): {} (also after "
                                             "cutting the step into {} parts)",
                                             step, s + 1, k, st.steps, reason, 1 << max_cuts);
-                result.driver_seconds = seconds_since(t_start) - result.constitutive_seconds;
+                finish(result, pc, t_start);
                 return result;
             }
             row.step = step;
@@ -294,7 +207,7 @@ ElementTestResult run_typed(const typename M::Params& params, const std::vector<
             on_row(row);
         }
     }
-    result.driver_seconds = seconds_since(t_start) - result.constitutive_seconds;
+    finish(result, pc, t_start);
     return result;
 }
 

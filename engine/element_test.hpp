@@ -25,11 +25,11 @@ struct ElementStage {
 enum class TangentKind { perturbation, rate };
 
 struct ElementTestSettings {
-    UpdateOptions update;                   // SIMD/scalar, integration tolerance etc.
+    UpdateOptions update; // SIMD/scalar, integration tolerance etc.
     TangentKind tangent = TangentKind::perturbation;
-    double newton_tolerance = 1.0e-8;       // stress residual / max(|sigma|, 1 kPa)
+    double newton_tolerance = 1.0e-8; // stress residual / max(|sigma|, 1 kPa)
     int max_newton_iterations = 40;
-    double perturbation = 1.0e-7;           // relative strain perturbation of the tangent
+    double perturbation = 1.0e-7; // relative strain perturbation of the tangent
 };
 
 struct ElementRow {

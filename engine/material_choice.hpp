@@ -31,12 +31,13 @@ struct model_of<LinearElasticParams> {
 };
 
 inline int state_size(const MaterialChoice& m) {
-    return std::visit([](const auto& p) { return model_of<std::decay_t<decltype(p)>>::type::n_state; },
-                      m);
+    return std::visit(
+        [](const auto& p) { return model_of<std::decay_t<decltype(p)>>::type::n_state; }, m);
 }
 inline std::string model_name(const MaterialChoice& m) {
-    return std::visit([](const auto& p) { return std::string(model_of<std::decay_t<decltype(p)>>::type::name); },
-                      m);
+    return std::visit(
+        [](const auto& p) { return std::string(model_of<std::decay_t<decltype(p)>>::type::name); },
+        m);
 }
 
 } // namespace ifsim

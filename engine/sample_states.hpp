@@ -26,8 +26,12 @@ inline void sample_common(std::mt19937_64& rng, Sym<double>& stress, double& e, 
     const double p = 20.0 + 380.0 * u(rng);
     const double k0 = 0.45 + 0.5 * u(rng);
     const double s1 = -3.0 * p / (1.0 + 2.0 * k0);
-    stress = {s1, k0 * s1, k0 * s1 * (0.9 + 0.2 * u(rng)), 0.1 * s1 * (u(rng) - 0.5),
-              0.05 * s1 * (u(rng) - 0.5), 0.05 * s1 * (u(rng) - 0.5)};
+    stress = {s1,
+              k0 * s1,
+              k0 * s1 * (0.9 + 0.2 * u(rng)),
+              0.1 * s1 * (u(rng) - 0.5),
+              0.05 * s1 * (u(rng) - 0.5),
+              0.05 * s1 * (u(rng) - 0.5)};
     e = e_lo + (e_hi - e_lo) * u(rng);
 }
 
@@ -42,8 +46,8 @@ inline Sym<double> sample_increment(std::mt19937_64& rng, double size) {
 
 } // namespace detail
 
-inline StateVec<double, Hypoplasticity::n_state>
-sample_state(const HypoplasticityParams& p, std::mt19937_64& rng) {
+inline StateVec<double, Hypoplasticity::n_state> sample_state(const HypoplasticityParams& p,
+                                                              std::mt19937_64& rng) {
     StateVec<double, Hypoplasticity::n_state> y{};
     Sym<double> s;
     double e;
@@ -58,7 +62,7 @@ sample_state(const HypoplasticityParams& p, std::mt19937_64& rng) {
 }
 
 inline StateVec<double, Sanisand::n_state> sample_state(const SanisandParams& p,
-                                                         std::mt19937_64& rng) {
+                                                        std::mt19937_64& rng) {
     StateVec<double, Sanisand::n_state> y{};
     Sym<double> s;
     double e;
@@ -73,7 +77,7 @@ inline StateVec<double, Sanisand::n_state> sample_state(const SanisandParams& p,
 }
 
 inline StateVec<double, LinearElastic::n_state> sample_state(const LinearElasticParams&,
-                                                              std::mt19937_64& rng) {
+                                                             std::mt19937_64& rng) {
     StateVec<double, LinearElastic::n_state> y{};
     Sym<double> s;
     double e;

@@ -62,7 +62,13 @@ void integrate_heun(const typename M::Params& p, const IntegrationSettings& s,
         T err = M::local_error(p, y, yE, yH);
         err = simd::select(simd::isfinite(err), err, T(1.0e30));
         const Mask accurate = fixed || (err <= s.tolerance);
-        const Mask accept = active && valid && accurate;
+        // An admissible substep of the smallest size is taken even when it misses the tolerance
+        // (a non-smooth rate, e.g. rho^beta_R at h = 0, can keep the estimate above a tight
+        // tolerance at any step size); the lane is flagged unreliable instead of being cut off.
+        const Mask forced = active && valid && !accurate && (dtl <= s.min_substep);
+        const Mask accept = active && valid && (accurate || forced);
+        stats.status =
+            simd::select(forced, simd::min(stats.status, T(lane_status::unreliable)), stats.status);
 
         M::correct(p, yH);
         y = select_state<T, N>(accept, yH, y);
@@ -85,8 +91,8 @@ void integrate_heun(const typename M::Params& p, const IntegrationSettings& s,
         {
             const T q = 0.9 * simd::sqrt(s.tolerance / simd::max(err, T(1.0e-30)));
             const T grow = simd::min(T(s.max_step_growth), simd::max(T(s.min_step_shrink), q));
-            const T shrink = simd::select(valid, simd::max(T(s.min_step_shrink), simd::min(q, T(0.5))),
-                                          T(0.25));
+            const T shrink =
+                simd::select(valid, simd::max(T(s.min_step_shrink), simd::min(q, T(0.5))), T(0.25));
             T next = simd::select(accept, dtl * grow, dtl * shrink);
             next = simd::max(next, T(s.min_substep));
             dt = simd::select(active && !fixed, next, dt);

@@ -8,8 +8,8 @@
 namespace ifsim {
 
 struct LinearElasticParams {
-    double E = 1.0e5;   // Young's modulus, kPa
-    double nu = 0.25;   // Poisson's ratio
+    double E = 1.0e5; // Young's modulus, kPa
+    double nu = 0.25; // Poisson's ratio
     void prepare() {}
 };
 

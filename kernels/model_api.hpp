@@ -40,20 +40,20 @@ inline constexpr double ok = 1.0;
 } // namespace lane_status
 
 struct IntegrationSettings {
-    double tolerance = 1.0e-3;       // accepted relative local error of one substep
-    double min_substep = 1.0e-9;     // smallest substep, as a fraction of the increment
-    int max_substeps = 200000;       // guard against runaway step collapse
-    double min_pressure = 1.0e-3;    // kPa; below this mean stress the tension cut-off acts
-    double max_step_growth = 2.0;    // largest growth factor of the substep size
-    double min_step_shrink = 0.1;    // smallest shrink factor of the substep size
+    double tolerance = 1.0e-3;    // accepted relative local error of one substep
+    double min_substep = 1.0e-9;  // smallest substep, as a fraction of the increment
+    int max_substeps = 200000;    // guard against runaway step collapse
+    double min_pressure = 1.0e-3; // kPa; below this mean stress the tension cut-off acts
+    double max_step_growth = 2.0; // largest growth factor of the substep size
+    double min_step_shrink = 0.1; // smallest shrink factor of the substep size
 };
 
 template <class T>
 struct UpdateStats {
     T status = T(lane_status::ok);
-    T substeps = T(0.0);          // accepted substeps
-    T rejected = T(0.0);          // rejected substeps
-    T rate_evaluations = T(0.0);  // evaluations of the rate equations
+    T substeps = T(0.0);         // accepted substeps
+    T rejected = T(0.0);         // rejected substeps
+    T rate_evaluations = T(0.0); // evaluations of the rate equations
 };
 
 template <class M>

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "kernels/hypoplasticity.hpp"
+#include "kernels/sanisand.hpp"
 
 namespace ifsim::parameter_sets {
 
@@ -56,6 +57,37 @@ inline std::optional<HypoplasticityParams> hypoplasticity(std::string_view name)
     }
     if (name == "karlsruhe-sand") {
         return hypoplasticity_karlsruhe();
+    }
+    return std::nullopt;
+}
+
+// Table 4: Sanisand for "Karlsruhe Sand" (c = 0.88 as listed; see SanisandParams::prepare for
+// the jump of c against Eq. 33 at kappa = 1).
+inline SanisandParams sanisand_karlsruhe() {
+    SanisandParams p;
+    p.p_a = 100.0;
+    p.e0 = 1.1;
+    p.lambda_c = 0.25;
+    p.xi = 0.35;
+    p.M_c = 1.3;
+    p.c = 0.88;
+    p.m = 0.05;
+    p.G0 = 70.0;
+    p.nu = 0.05;
+    p.h0 = 8.0;
+    p.c_h = 0.35;
+    p.n_b = 1.3;
+    p.A0 = 0.8;
+    p.n_d = 0.8;
+    p.z_max = 60.0;
+    p.c_z = 2000.0;
+    p.prepare();
+    return p;
+}
+
+inline std::optional<SanisandParams> sanisand(std::string_view name) {
+    if (name == "karlsruhe-sand") {
+        return sanisand_karlsruhe();
     }
     return std::nullopt;
 }

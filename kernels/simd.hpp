@@ -38,40 +38,116 @@ template <class T>
 inline constexpr std::size_t width_v = value_traits<T>::width;
 
 // --- scalar overloads -------------------------------------------------------------------
-inline double select(bool m, double a, double b) { return m ? a : b; }
-inline bool any(bool m) { return m; }
-inline bool all(bool m) { return m; }
-inline bool none(bool m) { return !m; }
-inline double sqrt(double x) { return std::sqrt(x); }
-inline double exp(double x) { return std::exp(x); }
-inline double log(double x) { return std::log(x); }
-inline double pow(double x, double y) { return std::pow(x, y); }
-inline double abs(double x) { return std::fabs(x); }
-inline double min(double a, double b) { return a < b ? a : b; }
-inline double max(double a, double b) { return a > b ? a : b; }
-inline double sin(double x) { return std::sin(x); }
-inline double cos(double x) { return std::cos(x); }
-inline bool isfinite(double x) { return std::isfinite(x); }
-inline double lane(double x, std::size_t) { return x; }
+inline double select(bool m, double a, double b) {
+    return m ? a : b;
+}
+inline bool select_mask(bool m, bool a, bool b) {
+    return m ? a : b;
+}
+inline bool any(bool m) {
+    return m;
+}
+inline bool all(bool m) {
+    return m;
+}
+inline bool none(bool m) {
+    return !m;
+}
+inline double sqrt(double x) {
+    return std::sqrt(x);
+}
+inline double exp(double x) {
+    return std::exp(x);
+}
+inline double log(double x) {
+    return std::log(x);
+}
+inline double pow(double x, double y) {
+    return std::pow(x, y);
+}
+inline double abs(double x) {
+    return std::fabs(x);
+}
+inline double min(double a, double b) {
+    return a < b ? a : b;
+}
+inline double max(double a, double b) {
+    return a > b ? a : b;
+}
+inline double sin(double x) {
+    return std::sin(x);
+}
+inline double cos(double x) {
+    return std::cos(x);
+}
+inline double atan(double x) {
+    return std::atan(x);
+}
+inline double ceil(double x) {
+    return std::ceil(x);
+}
+inline bool isfinite(double x) {
+    return std::isfinite(x);
+}
+inline double lane(double x, std::size_t) {
+    return x;
+}
 
 // --- batch overloads --------------------------------------------------------------------
 inline batch select(const batch_mask& m, const batch& a, const batch& b) {
     return xsimd::select(m, a, b);
 }
-inline bool any(const batch_mask& m) { return xsimd::any(m); }
-inline bool all(const batch_mask& m) { return xsimd::all(m); }
-inline bool none(const batch_mask& m) { return !xsimd::any(m); }
-inline batch sqrt(const batch& x) { return xsimd::sqrt(x); }
-inline batch exp(const batch& x) { return xsimd::exp(x); }
-inline batch log(const batch& x) { return xsimd::log(x); }
-inline batch pow(const batch& x, const batch& y) { return xsimd::pow(x, y); }
-inline batch pow(const batch& x, double y) { return xsimd::pow(x, batch(y)); }
-inline batch abs(const batch& x) { return xsimd::abs(x); }
-inline batch min(const batch& a, const batch& b) { return xsimd::min(a, b); }
-inline batch max(const batch& a, const batch& b) { return xsimd::max(a, b); }
-inline batch sin(const batch& x) { return xsimd::sin(x); }
-inline batch cos(const batch& x) { return xsimd::cos(x); }
-inline batch_mask isfinite(const batch& x) { return xsimd::isfinite(x); }
+inline batch_mask select_mask(const batch_mask& m, const batch_mask& a, const batch_mask& b) {
+    return (m && a) || (!m && b);
+}
+inline bool any(const batch_mask& m) {
+    return xsimd::any(m);
+}
+inline bool all(const batch_mask& m) {
+    return xsimd::all(m);
+}
+inline bool none(const batch_mask& m) {
+    return !xsimd::any(m);
+}
+inline batch sqrt(const batch& x) {
+    return xsimd::sqrt(x);
+}
+inline batch exp(const batch& x) {
+    return xsimd::exp(x);
+}
+inline batch log(const batch& x) {
+    return xsimd::log(x);
+}
+inline batch pow(const batch& x, const batch& y) {
+    return xsimd::pow(x, y);
+}
+inline batch pow(const batch& x, double y) {
+    return xsimd::pow(x, batch(y));
+}
+inline batch abs(const batch& x) {
+    return xsimd::abs(x);
+}
+inline batch min(const batch& a, const batch& b) {
+    return xsimd::min(a, b);
+}
+inline batch max(const batch& a, const batch& b) {
+    return xsimd::max(a, b);
+}
+inline batch sin(const batch& x) {
+    return xsimd::sin(x);
+}
+inline batch cos(const batch& x) {
+    return xsimd::cos(x);
+}
+inline batch atan(const batch& x) {
+    return xsimd::atan(x);
+}
+inline batch ceil(const batch& x) {
+    return xsimd::ceil(x);
+}
+inline batch_mask isfinite(const batch& x) {
+    return xsimd::isfinite(x);
+}
 inline double lane(const batch& x, std::size_t i) {
     alignas(64) double buf[batch::size];
     x.store_aligned(buf);
@@ -84,7 +160,9 @@ inline T select(const mask_t<T>& m, const T& a, double b) {
     return select(m, a, T(b));
 }
 // Reduction: largest value over the lanes (the scalar value itself for double).
-inline double hmax(double x) { return x; }
+inline double hmax(double x) {
+    return x;
+}
 inline double hmax(const batch& x) {
     alignas(64) double buf[batch::size];
     x.store_aligned(buf);
@@ -94,7 +172,11 @@ inline double hmax(const batch& x) {
     }
     return m;
 }
-inline double hsum(double x) { return x; }
-inline double hsum(const batch& x) { return xsimd::hadd(x); }
+inline double hsum(double x) {
+    return x;
+}
+inline double hsum(const batch& x) {
+    return xsimd::hadd(x);
+}
 
 } // namespace ifsim::simd

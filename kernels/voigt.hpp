@@ -28,7 +28,8 @@ inline T trace(const Sym<T>& a) {
 // Double contraction A : B (shear components count twice).
 template <class T>
 inline T ddot(const Sym<T>& a, const Sym<T>& b) {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + 2.0 * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5]);
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] +
+           2.0 * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5]);
 }
 template <class T>
 inline T norm(const Sym<T>& a) {
@@ -60,12 +61,9 @@ inline Sym<T> deviator(const Sym<T>& a) {
 // Matrix product A.A of a symmetric tensor (symmetric again).
 template <class T>
 inline Sym<T> square(const Sym<T>& a) {
-    return {a[0] * a[0] + a[3] * a[3] + a[4] * a[4],
-            a[3] * a[3] + a[1] * a[1] + a[5] * a[5],
-            a[4] * a[4] + a[5] * a[5] + a[2] * a[2],
-            a[0] * a[3] + a[3] * a[1] + a[4] * a[5],
-            a[0] * a[4] + a[3] * a[5] + a[4] * a[2],
-            a[3] * a[4] + a[1] * a[5] + a[5] * a[2]};
+    return {a[0] * a[0] + a[3] * a[3] + a[4] * a[4], a[3] * a[3] + a[1] * a[1] + a[5] * a[5],
+            a[4] * a[4] + a[5] * a[5] + a[2] * a[2], a[0] * a[3] + a[3] * a[1] + a[4] * a[5],
+            a[0] * a[4] + a[3] * a[5] + a[4] * a[2], a[3] * a[4] + a[1] * a[5] + a[5] * a[2]};
 }
 // tr(A.A.A)
 template <class T>

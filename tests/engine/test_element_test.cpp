@@ -12,10 +12,11 @@ using namespace ifsim;
 namespace {
 
 std::vector<ElementRow> run(const MaterialChoice& m, const std::vector<double>& y0,
-                            const std::vector<ElementStage>& stages,
-                            const ElementTestSettings& s, ElementTestResult* res = nullptr) {
+                            const std::vector<ElementStage>& stages, const ElementTestSettings& s,
+                            ElementTestResult* res = nullptr) {
     std::vector<ElementRow> rows;
-    auto r = run_element_test(m, y0, stages, s, [&](const ElementRow& row) { rows.push_back(row); });
+    auto r =
+        run_element_test(m, y0, stages, s, [&](const ElementRow& row) { rows.push_back(row); });
     if (res) {
         *res = r;
     } else {
@@ -57,7 +58,7 @@ TEST(ElementTest, DrainedTriaxialOnLinearElasticityIsHookesLaw) {
     ASSERT_EQ(rows.size(), 11u);
     const auto& last = rows.back();
     EXPECT_NEAR(last.strain[0], -0.01, 1e-15);
-    EXPECT_NEAR(last.strain[1], 0.3 * 0.01, 1e-12);  // -nu eps11
+    EXPECT_NEAR(last.strain[1], 0.3 * 0.01, 1e-12); // -nu eps11
     EXPECT_NEAR(last.strain[2], 0.3 * 0.01, 1e-12);
     EXPECT_NEAR(last.state[0], -50.0 - 2.0e4 * 0.01, 1e-8); // E eps11 at constant lateral stress
     EXPECT_NEAR(last.state[1], -50.0, 1e-8);

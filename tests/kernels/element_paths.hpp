@@ -2,12 +2,15 @@
 // Single-point element paths for the kernel tests: strain-controlled steps and mixed
 // strain/stress-controlled steps (drained triaxial compression at constant lateral stress),
 // driven through the guarded entry point material_update<Hypoplasticity, double>. The mixed
-// steps solve for the strain of the stress-controlled components by a Newton iteration with the
-// model's rate stiffness as the (approximate) tangent.
+// steps solve for the strain of the stress-controlled components by a Newton iteration with a
+// finite-difference tangent of the integrated update (see mixed_step). Also small helpers: limit
+// void ratios, invariants, rotations, SIMD lanes <-> scalar points.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
+#include <utility>
+#include <vector>
 
 #include "kernels/hypoplasticity.hpp"
 #include "kernels/material_update.hpp"
@@ -45,8 +48,8 @@ struct Invariants {
 };
 inline Invariants invariants(const Sym<double>& s) {
     const double I1 = s[0] + s[1] + s[2];
-    const double I2 = s[0] * s[1] + s[1] * s[2] + s[2] * s[0] - s[3] * s[3] - s[4] * s[4] -
-                      s[5] * s[5];
+    const double I2 =
+        s[0] * s[1] + s[1] * s[2] + s[2] * s[0] - s[3] * s[3] - s[4] * s[4] - s[5] * s[5];
     const double I3 = s[0] * (s[1] * s[2] - s[5] * s[5]) - s[3] * (s[3] * s[2] - s[5] * s[4]) +
                       s[4] * (s[3] * s[5] - s[1] * s[4]);
     return {I1, I2, I3};
@@ -64,9 +67,9 @@ inline double deviatoric_q(const Sym<double>& s) {
     return std::sqrt(1.5) * voigt::norm(voigt::deviator(s));
 }
 
-inline UpdateStats<double> strain_step(const HypoplasticityParams& p,
-                                       const IntegrationSettings& s, HypoState& y,
-                                       const Sym<double>& deps, double fixed_substeps = 0.0) {
+inline UpdateStats<double> strain_step(const HypoplasticityParams& p, const IntegrationSettings& s,
+                                       HypoState& y, const Sym<double>& deps,
+                                       double fixed_substeps = 0.0) {
     SubstepControl<double> control;
     control.fixed_substeps = fixed_substeps;
     UpdateStats<double> stats;
@@ -109,6 +112,14 @@ inline bool solve_small(std::array<std::array<double, Max>, Max> A, std::array<d
 
 // One mixed-control step. Components with stress_controlled[j] end at stress target[j]; the
 // others take the strain increment deps[j]. On return deps holds the full increment used.
+//
+// Newton on the unknown strains. The Jacobian is a forward difference of the integrated update
+// with the substep count frozen (equal substeps: a smooth map of deps). The residual uses the
+// adaptive update; its substep choice makes sigma(deps) jump by ~tolerance where an accept
+// decision flips, so after a few iterations the residual is frozen to equal substeps as well and
+// the iteration can meet a tight tolerance. The frozen count is the largest adaptive count seen,
+// so the equal substeps are no longer than the adaptive ones on average (this keeps them below
+// the stability limit ~2R of the intergranular strain, see test_integration.cpp).
 struct MixedResult {
     bool converged = false;
     int iterations = 0;
@@ -128,13 +139,16 @@ inline MixedResult mixed_step(const HypoplasticityParams& p, const IntegrationSe
     }
     MixedResult res;
     const double scale = std::max(voigt::norm(stress_of(y)), 1.0);
+    constexpr int adaptive_iterations = 4;
+    double frozen = 0.0;
     for (int it = 0; it < max_iterations; ++it) {
         HypoState trial = y;
-        res.stats = strain_step(p, s, trial, deps);
+        res.stats = strain_step(p, s, trial, deps, it < adaptive_iterations ? 0.0 : frozen);
         res.iterations = it + 1;
         if (res.stats.status < -0.5) {
             return res;
         }
+        frozen = std::max(frozen, res.stats.substeps);
         std::array<double, 6> r{};
         double rmax = 0.0;
         for (int k = 0; k < n; ++k) {
@@ -146,12 +160,17 @@ inline MixedResult mixed_step(const HypoplasticityParams& p, const IntegrationSe
             res.converged = true;
             return res;
         }
-        // Tangent: the rate stiffness at the start of the step in the current direction.
-        const auto cols = Hypoplasticity::rate_stiffness(p, s, y, deps);
+        HypoState base = y;
+        strain_step(p, s, base, deps, frozen);
+        const double h = 1.0e-7 * std::max(voigt::norm(deps), 1.0e-8);
         std::array<std::array<double, 6>, 6> A{};
-        for (int a = 0; a < n; ++a) {
-            for (int b = 0; b < n; ++b) {
-                A[a][b] = cols[idx[b]][idx[a]];
+        for (int b = 0; b < n; ++b) {
+            Sym<double> d = deps;
+            d[idx[b]] += h;
+            HypoState pert = y;
+            strain_step(p, s, pert, d, frozen);
+            for (int a = 0; a < n; ++a) {
+                A[a][b] = (pert[idx[a]] - base[idx[a]]) / h;
             }
         }
         if (!solve_small<6>(A, r, n)) {
@@ -171,9 +190,8 @@ struct TriaxialResult {
     int steps = 0;
     int max_newton = 0;
 };
-inline TriaxialResult drained_triaxial(const HypoplasticityParams& p,
-                                       const IntegrationSettings& s, HypoState& y,
-                                       double axial_strain, int steps) {
+inline TriaxialResult drained_triaxial(const HypoplasticityParams& p, const IntegrationSettings& s,
+                                       HypoState& y, double axial_strain, int steps) {
     const std::array<bool, 6> sc{false, true, true, false, false, false};
     const Sym<double> target = stress_of(y);
     Sym<double> deps{-axial_strain / steps, 0.0, 0.0, 0.0, 0.0, 0.0};
@@ -191,7 +209,7 @@ inline TriaxialResult drained_triaxial(const HypoplasticityParams& p,
     return out;
 }
 
-// A rotation from axis-angle (unit axis assumed) as a 3x3 matrix.
+// A rotation from axis-angle (the axis is normalised here) as a 3x3 matrix.
 using Mat3 = std::array<std::array<double, 3>, 3>;
 inline Mat3 rotation(std::array<double, 3> axis, double angle) {
     const double n = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
@@ -208,7 +226,11 @@ inline Mat3 to_matrix(const Sym<double>& a) {
     return {{{a[0], a[3], a[4]}, {a[3], a[1], a[5]}, {a[4], a[5], a[2]}}};
 }
 inline Sym<double> to_voigt(const Mat3& m) {
-    return {m[0][0], m[1][1], m[2][2], 0.5 * (m[0][1] + m[1][0]), 0.5 * (m[0][2] + m[2][0]),
+    return {m[0][0],
+            m[1][1],
+            m[2][2],
+            0.5 * (m[0][1] + m[1][0]),
+            0.5 * (m[0][2] + m[2][0]),
             0.5 * (m[1][2] + m[2][1])};
 }
 // Q a Q^T
@@ -227,6 +249,48 @@ inline Sym<double> rotate(const Mat3& Q, const Sym<double>& a) {
         }
     }
     return to_voigt(r);
+}
+
+// --- SIMD lanes <-> scalar points -----------------------------------------------------------
+
+template <std::size_t N>
+inline StateVec<simd::batch, N> to_batch(const std::vector<StateVec<double, N>>& ys) {
+    StateVec<simd::batch, N> y;
+    for (std::size_t k = 0; k < N; ++k) {
+        alignas(64) double buf[simd::lanes];
+        for (std::size_t l = 0; l < simd::lanes; ++l) {
+            buf[l] = ys[l][k];
+        }
+        y[k] = simd::batch::load_aligned(buf);
+    }
+    return y;
+}
+inline Sym<simd::batch> sym_batch(const std::vector<Sym<double>>& ds) {
+    Sym<simd::batch> d;
+    for (int k = 0; k < 6; ++k) {
+        alignas(64) double buf[simd::lanes];
+        for (std::size_t l = 0; l < simd::lanes; ++l) {
+            buf[l] = ds[l][k];
+        }
+        d[k] = simd::batch::load_aligned(buf);
+    }
+    return d;
+}
+template <std::size_t N>
+inline StateVec<double, N> lane_of(const StateVec<simd::batch, N>& y, std::size_t l) {
+    StateVec<double, N> r;
+    for (std::size_t k = 0; k < N; ++k) {
+        r[k] = simd::lane(y[k], l);
+    }
+    return r;
+}
+inline UpdateStats<double> stats_lane(const UpdateStats<simd::batch>& s, std::size_t l) {
+    UpdateStats<double> r;
+    r.status = simd::lane(s.status, l);
+    r.substeps = simd::lane(s.substeps, l);
+    r.rejected = simd::lane(s.rejected, l);
+    r.rate_evaluations = simd::lane(s.rate_evaluations, l);
+    return r;
 }
 
 } // namespace ifsim::test

@@ -64,8 +64,8 @@ TEST(Coulomb, OpenContactCarriesNoShear) {
 TEST(Coulomb, DerivativesMatchCentralDifferencesInSlipAndStick) {
     const auto p = params();
     const std::array<std::array<double, 5>, 3> cases = {{
-        {-100.0, 3.0, -2.0, 4.0e-3, 2.5e-3},  // slip
-        {-100.0, 3.0, -2.0, 1.0e-4, -2.0e-4}, // stick
+        {-100.0, 3.0, -2.0, 4.0e-3, 2.5e-3},   // slip
+        {-100.0, 3.0, -2.0, 1.0e-4, -2.0e-4},  // stick
         {-250.0, -40.0, 10.0, -6.0e-3, 1.0e-3} // slip, other quadrant
     }};
     for (const auto& c : cases) {
@@ -99,9 +99,10 @@ TEST(Coulomb, SimdLanesEqualScalar) {
         g1[i] = (i % 2 ? 1.0 : -1.0) * 1e-3 * i;
         g2[i] = 2e-4 * i;
     }
-    const auto rb = coulomb_update<simd::batch>(
-        p, simd::batch::load_aligned(tn), simd::batch::load_aligned(t1),
-        simd::batch::load_aligned(t2), simd::batch::load_aligned(g1), simd::batch::load_aligned(g2));
+    const auto rb =
+        coulomb_update<simd::batch>(p, simd::batch::load_aligned(tn), simd::batch::load_aligned(t1),
+                                    simd::batch::load_aligned(t2), simd::batch::load_aligned(g1),
+                                    simd::batch::load_aligned(g2));
     for (std::size_t i = 0; i < W; ++i) {
         const auto rs = coulomb_update<double>(p, tn[i], t1[i], t2[i], g1[i], g2[i]);
         EXPECT_NEAR(simd::lane(rb.tau1, i), rs.tau1, 1e-12 * (1 + std::abs(rs.tau1)));

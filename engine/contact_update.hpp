@@ -1,0 +1,367 @@
+#pragma once
+// The batched update of contact points: every point runs Algorithm 1 for its base evaluation
+// and, for the Jacobian, for its perturbed evaluations (paper Eq. 37: 2 ndim + 1 evaluations,
+// theta = `perturbation`). The perturbed evaluations are lanes like the base ones: a point
+// expands into L lanes of a lane buffer; TBB runs chunks of points, xsimd runs across lanes;
+// lanes converge independently under masks. Results are bitwise independent of the thread count
+// (fixed chunks, per-point results, reductions in point order).
+//
+// Jacobian schemes:
+//   perturbation       Eq. 37, forward differences of the whole Algorithm 1 (state not perturbed)
+//   full-perturbation  Eqs. 39-40: the perturbed lanes also start from the state perturbed along
+//                      its own derivative, iterated to a fixed point
+//   analytical         Eq. B3: rate stiffness of the model times d eps / d g (first term of B2)
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
+#include "engine/contact_points.hpp"
+#include "kernels/interface_algorithm1.hpp"
+
+namespace ifsim {
+
+enum class ContactJacobian : int { perturbation = 0, full_perturbation = 1, analytical = 2 };
+
+struct ContactOptions {
+    bool simd = true;
+    std::size_t chunk_points = 32; // points per TBB task (rounded up to the lane width)
+    InterfaceSettings interface;
+    ContactJacobian jacobian = ContactJacobian::perturbation;
+    double perturbation = 1.4901161193847656e-8; // theta = sqrt(machine epsilon), Eq. 38
+    int full_perturbation_iterations = 4;        // Eqs. 39-40 fixed-point iterations
+};
+
+struct ContactReport {
+    std::size_t points = 0;
+    std::size_t failed = 0;
+    std::size_t first_failed = std::numeric_limits<std::size_t>::max();
+    double first_failed_residual = 0.0;
+    std::size_t open = 0;
+    double lanes = 0.0;         // evaluations of Algorithm 1 (base + perturbed)
+    double subincrements = 0.0; // base lanes
+    double newton_iterations = 0.0;
+    double constitutive_evaluations = 0.0; // every model update, perturbed lanes included
+    double model_substeps = 0.0;
+    bool ok() const { return failed == 0; }
+};
+
+namespace detail {
+
+// Lane buffer columns: inputs, state, results.
+namespace lane_col {
+inline constexpr int t_N = 0, dg1 = 1, dg2 = 2, s_p1 = 3, s_p2 = 4, forced = 5;
+inline constexpr int status = 6, subincrements = 7, newton = 8, evaluations = 9, msub = 10,
+                     residual = 11, open = 12;
+inline constexpr int state = 13; // then NS + 6 state columns
+} // namespace lane_col
+
+template <class M, class T>
+void run_lanes(const typename M::Params& mp, const InterfaceSettings& s, ColumnStore& lanes,
+               std::size_t begin, std::size_t end) {
+    constexpr int NS = M::n_state;
+    constexpr std::size_t W = simd::width_v<T>;
+    using namespace lane_col;
+    auto load = [&](int c, std::size_t i) {
+        if constexpr (W == 1) {
+            return lanes.col(c)[i];
+        } else {
+            return T::load_aligned(lanes.col(c) + i);
+        }
+    };
+    auto store = [&](int c, std::size_t i, const T& v) {
+        if constexpr (W == 1) {
+            lanes.col(c)[i] = v;
+        } else {
+            v.store_aligned(lanes.col(c) + i);
+        }
+    };
+    for (std::size_t i = begin; i < end; i += W) {
+        InterfaceState<T, NS> st;
+        for (int k = 0; k < NS; ++k) {
+            st.y[k] = load(state + k, i);
+        }
+        st.eps_n = load(state + NS + contact_state::eps_n, i);
+        st.eps_p1 = load(state + NS + contact_state::eps_p1, i);
+        st.eps_p2 = load(state + NS + contact_state::eps_p2, i);
+        st.gamma1 = load(state + NS + contact_state::gamma1, i);
+        st.gamma2 = load(state + NS + contact_state::gamma2, i);
+        st.last_subincrement = load(state + NS + contact_state::last_sub, i);
+        const InterfaceInput<T> in{load(t_N, i),  load(dg1, i),  load(dg2, i),
+                                   load(s_p1, i), load(s_p2, i), load(forced, i)};
+        InterfaceStats<T> stats;
+        interface_update<M, T>(mp, s, st, in, stats);
+        for (int k = 0; k < NS; ++k) {
+            store(state + k, i, st.y[k]);
+        }
+        store(state + NS + contact_state::eps_n, i, st.eps_n);
+        store(state + NS + contact_state::eps_p1, i, st.eps_p1);
+        store(state + NS + contact_state::eps_p2, i, st.eps_p2);
+        store(state + NS + contact_state::gamma1, i, st.gamma1);
+        store(state + NS + contact_state::gamma2, i, st.gamma2);
+        store(state + NS + contact_state::last_sub, i, st.last_subincrement);
+        store(status, i, stats.status);
+        store(subincrements, i, stats.subincrements);
+        store(newton, i, stats.newton_iterations);
+        store(evaluations, i, stats.evaluations);
+        store(msub, i, stats.model_substeps);
+        store(residual, i, stats.residual);
+        store(open, i, stats.open);
+    }
+}
+
+} // namespace detail
+
+// Batched contact update with Jacobian columns.
+//
+// Lane layout: block k of the lane buffer holds lanes [k P, (k+1) P): block 0 the base
+// evaluations, blocks 1 .. 2 ndim the perturbed ones (slave e_1..e_ndim, master e_1..e_ndim),
+// and with adaptive sub-increments one more block, the base re-run on the perturbed lanes'
+// discretisation. Each point's perturbed lanes (and that re-run) take exactly the number of equal
+// sub-increments its base accepted, so the forward differences of Eq. 37 see no change of
+// discretisation, only the perturbation. The buffer is allocated once and reused.
+template <class M>
+class ContactEngine {
+public:
+    static constexpr int NS = M::n_state;
+
+    ContactReport update(ContactPoints<M>& cp, const typename M::Params& mp,
+                         const ContactOptions& opt) {
+        const bool perturbed = opt.jacobian != ContactJacobian::analytical;
+        const int ndim = cp.ndim();
+        const int n_pert = perturbed ? 2 * ndim : 0;
+        const bool rerun = perturbed && opt.interface.adaptive;
+        const int blocks = 1 + n_pert + (rerun ? 1 : 0);
+        const int ref = rerun ? blocks - 1 : 0;
+        const std::size_t P = cp.padded();
+        const int n_cols = detail::lane_col::state + ContactPoints<M>::n_state_cols;
+        if (lanes_.columns() != n_cols || lanes_.length() != P * blocks) {
+            ColumnStore fresh(n_cols, P * blocks);
+            lanes_.swap(fresh);
+        }
+        if (opt.jacobian == ContactJacobian::full_perturbation &&
+            state_derivative_.length() != P * blocks) {
+            ColumnStore g(ContactPoints<M>::n_state_cols, P * blocks);
+            state_derivative_.swap(g);
+        }
+        const std::size_t chunk =
+            ((opt.chunk_points + simd::lanes - 1) / simd::lanes) * simd::lanes;
+        const std::size_t n_chunks = (P + chunk - 1) / chunk;
+        const int iterations = opt.jacobian == ContactJacobian::full_perturbation
+                                   ? opt.full_perturbation_iterations
+                                   : 1;
+
+        auto run_block = [&](int k, std::size_t b, std::size_t e) {
+            if (opt.simd) {
+                detail::run_lanes<M, simd::batch>(mp, opt.interface, lanes_, k * P + b, k * P + e);
+            } else {
+                detail::run_lanes<M, double>(mp, opt.interface, lanes_, k * P + b, k * P + e);
+            }
+        };
+        tbb::parallel_for(
+            tbb::blocked_range<std::size_t>(0, n_chunks, 1),
+            [&](const tbb::blocked_range<std::size_t>& r) {
+                for (std::size_t c = r.begin(); c != r.end(); ++c) {
+                    const std::size_t b = c * chunk;
+                    const std::size_t e = b + chunk < P ? b + chunk : P;
+                    gather(cp, opt, P, 0, ndim, b, e, false);
+                    run_block(0, b, e);
+                    for (int it = 0; it < iterations && blocks > 1; ++it) {
+                        for (int k = 1; k < blocks; ++k) {
+                            gather(cp, opt, P, k, ndim, b, e, it > 0 && k != ref);
+                            run_block(k, b, e);
+                        }
+                        if (opt.jacobian == ContactJacobian::full_perturbation) {
+                            record_state_derivative(P, blocks, ref, b, e, opt.perturbation);
+                        }
+                    }
+                    scatter(cp, mp, opt, P, blocks, ref, b, e);
+                }
+            },
+            tbb::simple_partitioner());
+
+        ContactReport rep;
+        rep.points = cp.size();
+        for (std::size_t i = 0; i < cp.size(); ++i) {
+            if (cp.output(contact_col::status)[i] < -0.5) {
+                ++rep.failed;
+                if (i < rep.first_failed) {
+                    rep.first_failed = i;
+                    rep.first_failed_residual = cp.output(contact_col::residual)[i];
+                }
+            }
+            rep.open += cp.output(contact_col::open)[i] > 0.5 ? 1 : 0;
+            rep.subincrements += cp.output(contact_col::subincrements)[i];
+            rep.newton_iterations += cp.output(contact_col::newton_iterations)[i];
+            rep.constitutive_evaluations += cp.output(contact_col::evaluations)[i];
+            rep.model_substeps += cp.output(contact_col::model_substeps)[i];
+        }
+        rep.lanes =
+            static_cast<double>(cp.size()) * (1.0 + static_cast<double>(blocks - 1) * iterations);
+        return rep;
+    }
+
+private:
+    // The change of the gap vector g = x(1) - x(2) (Eq. 7) in lane block k:
+    // slave +theta e_d -> +theta e_d, master +theta e_d -> -theta e_d; base and re-run: none.
+    static void block_gap_change(int k, int ndim, double theta, double dg[3]) {
+        dg[0] = dg[1] = dg[2] = 0.0;
+        if (k == 0 || k > 2 * ndim) {
+            return;
+        }
+        const bool slave = k <= ndim;
+        const int d = slave ? k - 1 : k - 1 - ndim;
+        dg[d] = slave ? theta : -theta;
+    }
+
+    void gather(ContactPoints<M>& cp, const ContactOptions& opt, std::size_t P, int k, int ndim,
+                std::size_t b, std::size_t e, bool with_state_derivative) {
+        using namespace detail::lane_col;
+        for (std::size_t i = b; i < e; ++i) {
+            const std::size_t l = k * P + i;
+            double dg[3];
+            block_gap_change(k, ndim, opt.perturbation, dg);
+            double dgn = 0.0, dg_t1 = 0.0, dg_t2 = 0.0;
+            for (int d = 0; d < 3; ++d) {
+                dgn += dg[d] * cp.input(contact_col::n + d)[i];
+                dg_t1 += dg[d] * cp.input(contact_col::t1 + d)[i];
+                dg_t2 += dg[d] * cp.input(contact_col::t2 + d)[i];
+            }
+            // Normal: t_N = k_N g_N. Tangential (Eq. A13): master minus slave motion.
+            lanes_.col(t_N)[l] =
+                cp.input(contact_col::t_N)[i] + cp.input(contact_col::k_N)[i] * dgn;
+            lanes_.col(dg1)[l] = cp.input(contact_col::dg1)[i] - dg_t1;
+            lanes_.col(dg2)[l] = cp.input(contact_col::dg2)[i] - dg_t2;
+            lanes_.col(s_p1)[l] = cp.input(contact_col::s_p1)[i];
+            lanes_.col(s_p2)[l] = cp.input(contact_col::s_p2)[i];
+            // Perturbed lanes follow their base's discretisation.
+            lanes_.col(forced)[l] = k == 0 ? 0.0 : std::max(1.0, lanes_.col(subincrements)[i]);
+            for (int c = 0; c < ContactPoints<M>::n_state_cols; ++c) {
+                double v = cp.committed(c)[i];
+                // Eqs. 39-40: the perturbed lane's start state moves along its derivative.
+                if (with_state_derivative) {
+                    v += opt.perturbation * state_derivative_.col(c)[l];
+                }
+                lanes_.col(state + c)[l] = v;
+            }
+        }
+    }
+
+    void record_state_derivative(std::size_t P, int blocks, int ref, std::size_t b, std::size_t e,
+                                 double theta) {
+        using namespace detail::lane_col;
+        for (int k = 1; k < blocks; ++k) {
+            if (k == ref) {
+                continue;
+            }
+            for (std::size_t i = b; i < e; ++i) {
+                for (int c = 0; c < ContactPoints<M>::n_state_cols; ++c) {
+                    state_derivative_.col(c)[k * P + i] =
+                        (lanes_.col(state + c)[k * P + i] - lanes_.col(state + c)[ref * P + i]) /
+                        theta;
+                }
+            }
+        }
+    }
+
+    double lane_traction(std::size_t l, int comp) const {
+        using namespace detail::lane_col;
+        if (lanes_.col(open)[l] > 0.5) {
+            return 0.0;
+        }
+        return comp == 0 ? lanes_.col(t_N)[l] : lanes_.col(state + (comp == 1 ? 3 : 4))[l];
+    }
+
+    void scatter(ContactPoints<M>& cp, const typename M::Params& mp, const ContactOptions& opt,
+                 std::size_t P, int blocks, int ref, std::size_t b, std::size_t e) {
+        using namespace detail::lane_col;
+        const int ndim = cp.ndim();
+        const int n_pert = blocks > 1 ? 2 * ndim : 0;
+        for (std::size_t i = b; i < e; ++i) {
+            double st = lanes_.col(status)[i];
+            double evals = 0.0;
+            for (int k = 0; k < blocks; ++k) {
+                evals += lanes_.col(evaluations)[k * P + i];
+                st = std::min(st, lanes_.col(status)[k * P + i]);
+            }
+            for (int c = 0; c < ContactPoints<M>::n_state_cols; ++c) {
+                cp.trial(c)[i] = lanes_.col(state + c)[i];
+            }
+            for (int comp = 0; comp < 3; ++comp) {
+                cp.output(contact_col::traction + comp)[i] = lane_traction(i, comp);
+            }
+            if (n_pert > 0) {
+                for (int k = 1; k <= n_pert; ++k) {
+                    for (int comp = 0; comp < 3; ++comp) {
+                        cp.output(contact_col::jacobian + comp + 3 * (k - 1))[i] =
+                            (lane_traction(k * P + i, comp) - lane_traction(ref * P + i, comp)) /
+                            opt.perturbation;
+                    }
+                }
+            } else {
+                analytical_jacobian(cp, mp, opt, i);
+            }
+            cp.output(contact_col::status)[i] = st;
+            cp.output(contact_col::subincrements)[i] = lanes_.col(subincrements)[i];
+            cp.output(contact_col::newton_iterations)[i] = lanes_.col(newton)[i];
+            cp.output(contact_col::evaluations)[i] = evals;
+            cp.output(contact_col::model_substeps)[i] = lanes_.col(msub)[i];
+            cp.output(contact_col::residual)[i] = lanes_.col(residual)[i];
+            cp.output(contact_col::open)[i] = lanes_.col(open)[i];
+        }
+    }
+
+    // Eq. B3: J = M d eps / d g with only the first term of Eq. B2: the model's rate stiffness
+    // at the new state, d eps_12 / d g_T1 = cos^2(dgamma) / (2 d_s) from Eq. 25; the normal
+    // traction t_N = k_N g_N exactly; no coupling of tau with the normal gap.
+    void analytical_jacobian(ContactPoints<M>& cp, const typename M::Params& mp,
+                             const ContactOptions& opt, std::size_t i) {
+        using namespace detail::lane_col;
+        const int ndim = cp.ndim();
+        StateVec<double, NS> y;
+        for (int k = 0; k < NS; ++k) {
+            y[k] = lanes_.col(state + k)[i];
+        }
+        const double eps_n = lanes_.col(state + NS + contact_state::eps_n)[i];
+        const double d_s = opt.interface.shear_band_thickness * (1.0 + eps_n);
+        const double dgt[2] = {cp.input(contact_col::dg1)[i], cp.input(contact_col::dg2)[i]};
+        const Sym<double> dir = {0.0, 0.0, 0.0, std::atan(dgt[0] / d_s), std::atan(dgt[1] / d_s),
+                                 0.0};
+        const auto cols = M::template rate_stiffness<double>(mp, opt.interface.model, y, dir);
+        const bool open_lane = lanes_.col(open)[i] > 0.5;
+        double dtau[2][2];
+        for (int a = 0; a < 2; ++a) {
+            for (int b2 = 0; b2 < 2; ++b2) {
+                const double cg = std::cos(dir[3 + b2]);
+                dtau[a][b2] = open_lane ? 0.0 : cols[3 + b2][3 + a] * 0.5 * cg * cg / d_s;
+            }
+        }
+        const double k_N = open_lane ? 0.0 : cp.input(contact_col::k_N)[i];
+        for (int side = 0; side < 2; ++side) {
+            const double sgn = side == 0 ? 1.0 : -1.0; // gap change per +u: slave +, master -
+            for (int d = 0; d < ndim; ++d) {
+                const int c = side * ndim + d;
+                const double n_d = cp.input(contact_col::n + d)[i];
+                const double tt[2] = {cp.input(contact_col::t1 + d)[i],
+                                      cp.input(contact_col::t2 + d)[i]};
+                cp.output(contact_col::jacobian + 0 + 3 * c)[i] = k_N * sgn * n_d;
+                for (int a = 0; a < 2; ++a) {
+                    // dg_T,b = -(delta g . t_b)
+                    cp.output(contact_col::jacobian + 1 + a + 3 * c)[i] =
+                        -sgn * (dtau[a][0] * tt[0] + dtau[a][1] * tt[1]);
+                }
+            }
+        }
+    }
+
+    ColumnStore lanes_;
+    ColumnStore state_derivative_;
+};
+
+} // namespace ifsim

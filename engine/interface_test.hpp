@@ -1,0 +1,90 @@
+#pragma once
+// The point-level simple interface shear test (scene kind "interface-test", paper §5): one
+// continuum material point (the sample, height H) in series with one interface point. Both
+// carry the same normal stress t_N and shear stress tau; the sample's in-plane strains are zero
+// (rigid box); the plate's tangential displacement is the interface slip plus the sample's
+// shear: du_t = dg_T + 2 deps_12 H. Normal control: CNL (t_N constant) or CNS
+// (t_N = t_N0 - K u_n with u_n = eps_11 H of the sample).
+//
+// Each step solves for (dg_T1, dg_T2, deps_11) by Newton's method, with the interface traction
+// Jacobian of the contact engine (Eq. 37 lanes, or the scene's scheme) and the sample's tangent
+// by perturbation. Local axes: 1 = interface normal, 2 = t1, 3 = t2.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "engine/batched_update.hpp"
+#include "engine/contact_update.hpp"
+#include "engine/material_choice.hpp"
+#include "kernels/coulomb.hpp"
+
+namespace ifsim {
+
+enum class InterfaceKind { continuum, coulomb }; // continuum: novel or Stutz (settings.formulation)
+enum class NormalControl { constant_stress, constant_stiffness };
+
+struct InterfaceStage {
+    int steps = 1;
+    double du_t1 = 0.0; // plate tangential displacement change over the stage (m)
+    double du_t2 = 0.0;
+};
+
+struct InterfaceTestSpec {
+    InterfaceKind kind = InterfaceKind::continuum;
+    MaterialChoice interface_material;   // continuum model used as interface model
+    std::vector<double> interface_state; // its initial state (local axes, model layout)
+    CoulombParams coulomb;               // kind == coulomb
+    MaterialChoice sample_material;
+    std::vector<double> sample_state; // initial sample state (local axes)
+    double height = 0.02;             // sample height H (m)
+    NormalControl control = NormalControl::constant_stress;
+    double normal_stiffness = 0.0; // K (kPa/m), CNS only
+    ContactOptions contact;        // formulation, sub-increments, Jacobian scheme, SIMD
+    UpdateOptions sample_update;   // the sample's integration settings, SIMD
+    // Relative residual of the step equations, |R| / max(|t_N|, 1 kPa). The interface response
+    // is only piecewise smooth (sub-increment counts, Newton stops, loading branches of the
+    // model), with jumps of order 1e-6 relative: tighter tolerances can stall.
+    double newton_tolerance = 1.0e-5;
+    int max_newton_iterations = 40;
+    std::vector<InterfaceStage> stages;
+};
+
+struct InterfaceRow {
+    int step = 0, stage = 0;
+    double u_t1 = 0, u_t2 = 0, u_n = 0, t_n = 0, t_t1 = 0, t_t2 = 0;
+    double s_n = 0, s_p1 = 0, s_p2 = 0, eps_n = 0, eps_p1 = 0, eps_p2 = 0;
+    double gamma1 = 0, gamma2 = 0, band_thickness = 0;
+    double sample_s11 = 0, sample_s22 = 0, sample_s33 = 0, sample_s12 = 0, sample_s13 = 0;
+    double e_interface = 0, e_sample = 0;
+    double slip1 = 0, slip2 = 0; // accumulated interface slip g_T (m)
+    int newton_iterations = 0;   // of this step
+};
+
+struct InterfaceTestCounters {
+    long increments = 0;
+    long newton_iterations = 0;
+    double subincrements = 0.0; // Algorithm 1 sub-increments (base evaluations)
+    double interface_newton_iterations = 0.0;
+    double constitutive_evaluations = 0.0; // interface (all lanes) + sample
+    double interface_evaluations = 0.0;
+    double sample_evaluations = 0.0;
+    double model_substeps = 0.0;
+};
+
+struct InterfaceTestResult {
+    bool ok = true;
+    std::string reason;
+    InterfaceTestCounters counters;
+    double interface_seconds = 0.0; // inside the contact engine
+    double sample_seconds = 0.0;    // inside the sample's batched updates
+    double driver_seconds = 0.0;
+};
+
+// Runs all stages; on_row for step 0 and after every step. A failure stops the run with
+// ok = false and a reason naming step, stage and cause. Throws std::invalid_argument for
+// inconsistent input (state lengths).
+InterfaceTestResult run_interface_test(const InterfaceTestSpec& spec,
+                                       const std::function<void(const InterfaceRow&)>& on_row);
+
+} // namespace ifsim

@@ -1,0 +1,41 @@
+#pragma once
+// One progress line on stderr for runs longer than about a second: step/total, stage and
+// elapsed time, rewritten in place (carriage return) at most five times per second. Shown
+// automatically when stderr is a terminal, always with --progress, never with --quiet.
+
+#include <chrono>
+#include <cstdio>
+
+namespace ifsim::io {
+
+enum class ProgressMode { automatic, always, never };
+
+class ProgressLine {
+public:
+    ProgressLine(ProgressMode mode, long total_steps, int stages, std::FILE* out = stderr);
+    ~ProgressLine() { finish(); }
+    ProgressLine(const ProgressLine&) = delete;
+    ProgressLine& operator=(const ProgressLine&) = delete;
+
+    void update(long step, int stage);
+    // Ends the line (newline) if one was shown.
+    void finish();
+
+    bool enabled() const { return enabled_; }
+    bool shown() const { return shown_; }
+
+    static constexpr double first_after_s = 1.0;
+    static constexpr double interval_s = 0.2;
+
+private:
+    using Clock = std::chrono::steady_clock;
+    bool enabled_;
+    long total_;
+    int stages_;
+    std::FILE* out_;
+    Clock::time_point start_;
+    double last_ = -1.0;
+    bool shown_ = false;
+};
+
+} // namespace ifsim::io

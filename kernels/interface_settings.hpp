@@ -1,0 +1,81 @@
+#pragma once
+// Settings and per-lane data of the interface formulations (paper §3.3-3.5).
+//
+// Local axes of an interface point: 1 = n (normal), 2 = t1, 3 = t2. The interface stress of
+// Eq. 17 in Voigt order is [sigma_N, sigma_p1, sigma_p2, tau_1, tau_2, 0] and the strain
+// [eps_N, eps_p1, eps_p2, gamma_1/2, gamma_2/2, 0] (tensor shear components).
+
+#include <array>
+
+#include "kernels/model_api.hpp"
+
+namespace ifsim {
+
+enum class InterfaceFormulation : int {
+    novel = 0, // Eqs. 17-24: sigma_p1, sigma_p2 from the extrapolated continuum stress
+    stutz = 1  // Eqs. 10-12: in-plane strains zero, Newton on eps_N only
+};
+
+enum class NewtonJacobian : int {
+    rate = 0,        // the model's rate stiffness at the sub-increment's start (cheap)
+    perturbation = 1 // derivative of the integrated update by perturbation (consistent)
+};
+
+struct InterfaceSettings {
+    InterfaceFormulation formulation = InterfaceFormulation::novel;
+    int ndim = 3;                        // 2: plane strain, t2 out of plane (eps_p2 = gamma_2 = 0)
+    double shear_band_thickness = 0.003; // d_s0 (m)
+    double max_subincrement = 5.0e-6;    // largest shear-strain sub-increment (Algorithm 1 line 1)
+    double tolerance = 2.0e-3;           // relative error of Eqs. 18-20, Algorithm 1 line 9
+    bool adaptive = false;               // error-controlled sub-increments instead of fixed ones
+    double adaptive_tolerance = 2.0e-3;  // local relative stress error per adaptive sub-increment
+    int max_newton_iterations = 30;
+    // Newton corrections applied after the residual of Eqs. 18-20 is below `tolerance`. The
+    // paper stops at once (0). One more quadratic step leaves a residual of order tol^2, which
+    // removes the chatter of the normal strains between sub-increments and makes the traction a
+    // smooth function of the gap, as the perturbation Jacobian (Eq. 37) needs. See
+    // docs/interface.md for the measurements behind this default.
+    int polish_iterations = 1;
+    long max_subincrements = 2'000'000; // per call, a guard against runaway refinement
+    NewtonJacobian newton_jacobian = NewtonJacobian::rate;
+    double newton_perturbation = 1.0e-7; // relative strain perturbation of the Newton Jacobian
+    // Eq. 26 lets d_s = d_s0 (1 + eps_N) shrink towards zero in long compaction. Below this
+    // fraction of d_s0 the point stops with status failed (a defined stop, never a NaN).
+    double min_band_fraction = 0.05;
+    IntegrationSettings model; // the continuum model's own integration settings
+};
+
+// Per-lane interface state: the model state in local axes (stress = interface stress of Eq. 17),
+// the interface strains, and the last accepted adaptive sub-increment (fraction of the shear
+// strain increment's size in units of max_subincrement).
+template <class T, int NS>
+struct InterfaceState {
+    StateVec<T, NS> y;
+    T eps_n = T(0.0), eps_p1 = T(0.0), eps_p2 = T(0.0);
+    T gamma1 = T(0.0), gamma2 = T(0.0);
+    T last_subincrement = T(0.0); // 0: none yet
+};
+
+// Inputs of one evaluation (one increment of the global problem).
+template <class T>
+struct InterfaceInput {
+    T t_N;        // normal contact stress at the end of the increment (<= 0)
+    T dg1, dg2;   // tangential gap increments along t1, t2 (Eq. A13)
+    T s_p1, s_p2; // extrapolated continuum stress rotated into the local frame (Eqs. 14-16)
+    // > 0: take exactly this many equal sub-increments (perturbed evaluations follow the
+    // discretisation of their base so a difference quotient sees no step-selection noise).
+    T forced_subincrements = T(0.0);
+};
+
+template <class T>
+struct InterfaceStats {
+    T status = T(lane_status::ok);
+    T subincrements = T(0.0); // accepted sub-increments
+    T newton_iterations = T(0.0);
+    T evaluations = T(0.0);    // constitutive model updates (Newton, perturbed, rejected)
+    T model_substeps = T(0.0); // substeps of the model's own integration
+    T residual = T(0.0);       // final relative residual of Eqs. 18-20 (worst sub-increment)
+    T open = T(0.0);           // 1: contact open (t_N >= 0), no traction, state kept
+};
+
+} // namespace ifsim
