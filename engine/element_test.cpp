@@ -191,7 +191,6 @@ ElementTestResult run_typed(const typename M::Params& params, const std::vector<
                 }
             }
             ++step;
-            ++result.counters.increments;
             if (!done) {
                 result.ok = false;
                 result.reason = fmt::format("step {} (stage {}, step {} of {}): {} (also after "
@@ -200,6 +199,7 @@ ElementTestResult run_typed(const typename M::Params& params, const std::vector<
                 finish(result, pc, t_start);
                 return result;
             }
+            ++result.counters.increments;
             row.step = step;
             row.stage = static_cast<int>(s) + 1;
             row.strain = strain;

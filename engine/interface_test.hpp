@@ -44,8 +44,8 @@ struct InterfaceTestSpec {
     UpdateOptions sample_update;   // the sample's integration settings, SIMD
     // Relative residual of the step equations, |R| / max(|t_N|, 1 kPa). The interface response
     // is only piecewise smooth (sub-increment counts, Newton stops, loading branches of the
-    // model), with jumps of order 1e-6 relative: tighter tolerances can stall.
-    double newton_tolerance = 1.0e-5;
+    // model), with jumps of up to ~2e-5 relative measured: tighter tolerances can stall.
+    double newton_tolerance = 1.0e-4;
     int max_newton_iterations = 40;
     std::vector<InterfaceStage> stages;
 };

@@ -38,12 +38,13 @@ public:
                    PointCounters& counters)
         : params_(params), options_(options), counters_(counters), points_(7) {}
 
-    // Adaptive update of y over deps (the base lane).
-    Eval evaluate(const State& y, const Sym<double>& deps) {
+    // Update of y over deps (the base lane): adaptive, or with exactly `fixed_substeps` equal
+    // substeps when it is > 0.
+    Eval evaluate(const State& y, const Sym<double>& deps, double fixed_substeps = 0.0) {
         for (std::size_t i = 0; i < points_.size(); ++i) {
             points_.set_state(i, y);
             points_.set_deps(i, i == 0 ? deps : Sym<double>{});
-            points_.fixed_substeps()[i] = 0.0;
+            points_.fixed_substeps()[i] = i == 0 ? fixed_substeps : 0.0;
         }
         run(1);
         return Eval{points_.trial_state(0), points_.status()[0], points_.substeps()[0]};

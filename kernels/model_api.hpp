@@ -9,11 +9,17 @@
 // A model is a struct with
 //   static constexpr int n_state;               // length of the flat state
 //   static constexpr const char* name;
+//   static constexpr bool pressure_floor;       // lift a start below min_pressure to the floor
 //   using Params = ...;                          // plain doubles, shared by a batch
-//   template <class T> static void update(const Params&, const IntegrationSettings&,
-//                                         State<T>& y, const Sym<T>& deps, UpdateStats<T>&);
-// update() integrates the strain increment deps from y in place; it never throws, allocates or
-// prints. Failure is reported per lane in UpdateStats::status.
+//   template <class T> static void integrate(const Params&, const IntegrationSettings&,
+//                                            const SubstepControl<T>&, State<T>& y,
+//                                            const Sym<T>& deps, UpdateStats<T>&);
+//   template <class T> static std::array<Sym<T>, 6> rate_stiffness(const Params&,
+//                                            const IntegrationSettings&, const State<T>&,
+//                                            const Sym<T>& deps);
+// integrate() integrates the strain increment deps from y in place; it never throws, allocates
+// or prints. Failure is reported per lane in UpdateStats::status. The engine calls it through
+// material_update() (kernels/material_update.hpp), which validates the input.
 
 #include <array>
 #include <concepts>
