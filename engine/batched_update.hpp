@@ -87,6 +87,158 @@ void update_range(MaterialPoints<M>& mp, const typename M::Params& params, const
     }
 }
 
+// SIMD path with lane refill, for models integrated by the Heun stepper: a lane whose point
+// has finished its increment takes the next pending point at once, so a point that needs many
+// substeps holds up only its own lane, not the whole batch. Each point's arithmetic is the same
+// as in material_update(), so the result does not depend on which lane or when it ran.
+template <class M>
+void update_range_refill(MaterialPoints<M>& mp, const typename M::Params& params,
+                         const UpdateOptions& opt, std::size_t begin, std::size_t end) {
+    constexpr int N = M::n_state;
+    constexpr std::size_t W = simd::lanes;
+    using B = simd::batch;
+    const IntegrationSettings& s = opt.settings;
+    alignas(64) double y[N][W], y0[N][W], de[6][W];
+    alignas(64) double t[W], dt[W], fixed[W], st[W], sub[W], rej[W], rate[W];
+    bool input_ok[W];
+    std::size_t idx[W];
+    bool busy[W];
+    std::size_t next = begin;
+
+    auto load_lane = [&](std::size_t l, std::size_t i) {
+        StateVec<double, N> ys;
+        for (int k = 0; k < N; ++k) {
+            ys[k] = mp.committed(k)[i];
+            y0[k][l] = ys[k];
+        }
+        Sym<double> d;
+        for (int j = 0; j < 6; ++j) {
+            d[j] = mp.deps(j)[i];
+        }
+        UpdateStats<double> stats;
+        bool ok = true;
+        const Sym<double> dd = material_prepare<M, double>(s, ys, d, stats, ok);
+        for (int k = 0; k < N; ++k) {
+            y[k][l] = ys[k];
+        }
+        for (int j = 0; j < 6; ++j) {
+            de[j][l] = dd[j];
+        }
+        const SubstepControl<double> c{mp.fixed_substeps()[i], opt.initial_substep};
+        heun_begin(s, c, t[l], dt[l]);
+        fixed[l] = c.fixed_substeps;
+        st[l] = stats.status;
+        sub[l] = rej[l] = rate[l] = 0.0;
+        input_ok[l] = ok;
+        idx[l] = i;
+        busy[l] = true;
+    };
+    auto idle_lane = [&](std::size_t l) {
+        busy[l] = false;
+        t[l] = 1.0; // inactive
+        dt[l] = 1.0;
+        for (int k = 0; k < N; ++k) {
+            y[k][l] = k < 3 ? -100.0 : (k == 6 ? 0.7 : 0.0);
+        }
+        for (int j = 0; j < 6; ++j) {
+            de[j][l] = 0.0;
+        }
+    };
+    auto finish_lane = [&](std::size_t l) {
+        StateVec<double, N> ys, ys0;
+        for (int k = 0; k < N; ++k) {
+            ys[k] = y[k][l];
+            ys0[k] = y0[k][l];
+        }
+        UpdateStats<double> stats{st[l], sub[l], rej[l], rate[l]};
+        if ((1.0 - t[l]) > 1.0e-12) { // ran out of substeps
+            stats.status = lane_status::failed;
+        }
+        material_finish<M, double>(ys0, ys, input_ok[l], stats);
+        const std::size_t i = idx[l];
+        for (int k = 0; k < N; ++k) {
+            mp.trial(k)[i] = ys[k];
+        }
+        mp.status()[i] = stats.status;
+        mp.substeps()[i] = stats.substeps;
+        mp.rejected()[i] = stats.rejected;
+        mp.rate_evaluations()[i] = stats.rate_evaluations;
+    };
+
+    for (std::size_t l = 0; l < W; ++l) {
+        if (next < end) {
+            load_lane(l, next++);
+        } else {
+            idle_lane(l);
+        }
+    }
+    // The lanes live in batches across attempts; they go through the arrays above only when a
+    // lane finishes and is refilled.
+    StateVec<B, N> yb;
+    Sym<B> deb;
+    B tb, dtb;
+    simd::batch_mask fixedb;
+    UpdateStats<B> stats;
+    auto to_batches = [&] {
+        for (int k = 0; k < N; ++k) {
+            yb[k] = B::load_aligned(y[k]);
+        }
+        for (int j = 0; j < 6; ++j) {
+            deb[j] = B::load_aligned(de[j]);
+        }
+        tb = B::load_aligned(t);
+        dtb = B::load_aligned(dt);
+        fixedb = B::load_aligned(fixed) > 0.5;
+        stats = UpdateStats<B>{B::load_aligned(st), B::load_aligned(sub), B::load_aligned(rej),
+                               B::load_aligned(rate)};
+    };
+    auto to_arrays = [&] {
+        for (int k = 0; k < N; ++k) {
+            yb[k].store_aligned(y[k]);
+        }
+        tb.store_aligned(t);
+        dtb.store_aligned(dt);
+        stats.status.store_aligned(st);
+        stats.substeps.store_aligned(sub);
+        stats.rejected.store_aligned(rej);
+        stats.rate_evaluations.store_aligned(rate);
+    };
+    to_batches();
+    alignas(64) double attempts_d[W] = {};
+    B attempts_b = B::load_aligned(attempts_d);
+    for (;;) {
+        const simd::batch_mask active = (B(1.0) - tb) > 1.0e-12;
+        if (simd::none(active)) {
+            break; // every lane idle: no point pending
+        }
+        heun_attempt<M, B>(params, s, fixedb, yb, tb, dtb, deb, stats, active);
+        attempts_b = attempts_b + simd::select(active, B(1.0), B(0.0));
+        const simd::batch_mask finished =
+            active && (((B(1.0) - tb) <= 1.0e-12) || (attempts_b >= double(s.max_substeps)));
+        if (simd::none(finished)) {
+            continue;
+        }
+        to_arrays();
+        attempts_b.store_aligned(attempts_d);
+        for (std::size_t l = 0; l < W; ++l) {
+            if (!busy[l]) {
+                continue;
+            }
+            if ((1.0 - t[l]) <= 1.0e-12 || attempts_d[l] >= s.max_substeps) {
+                finish_lane(l);
+                attempts_d[l] = 0.0;
+                if (next < end) {
+                    load_lane(l, next++);
+                } else {
+                    idle_lane(l);
+                }
+            }
+        }
+        to_batches();
+        attempts_b = B::load_aligned(attempts_d);
+    }
+}
+
 } // namespace detail
 
 // Integrates every point; never throws on a bad point (see UpdateReport::failed).
@@ -104,7 +256,11 @@ UpdateReport batched_update(MaterialPoints<M>& mp, const typename M::Params& par
                 const std::size_t b = c * chunk;
                 const std::size_t e = b + chunk < P ? b + chunk : P;
                 if (opt.simd) {
-                    detail::update_range<M, simd::batch>(mp, params, opt, b, e);
+                    if constexpr (M::heun_stepper) {
+                        detail::update_range_refill<M>(mp, params, opt, b, e);
+                    } else {
+                        detail::update_range<M, simd::batch>(mp, params, opt, b, e);
+                    }
                 } else {
                     detail::update_range<M, double>(mp, params, opt, b, e);
                 }

@@ -116,31 +116,35 @@ void sanisand_state(const TableReader& initial, const SanisandParams& p, const S
 
 } // namespace
 
-std::vector<double> read_initial_state(const TableReader& initial, const MaterialSpec& material) {
-    initial.allow_only({"stress", "void_ratio", "intergranular_strain", "back_stress", "fabric"});
+std::vector<double> model_state(const TableReader& t, const MaterialSpec& material,
+                                const Six& stress, double e) {
     const bool hypo = material.model == "hypoplasticity";
     const bool sanisand = material.model == "sanisand";
-    if (!hypo && initial.has("intergranular_strain")) {
-        initial.fail("intergranular_strain", "applies to hypoplasticity only; expected no such key "
-                                             "for model " +
-                                                 material.model);
+    if (!hypo && t.has("intergranular_strain")) {
+        t.fail("intergranular_strain",
+               "applies to hypoplasticity only; expected no such key for model " + material.model);
     }
     for (const char* key : {"back_stress", "fabric"}) {
-        if (!sanisand && initial.has(key)) {
-            initial.fail(key, "applies to sanisand only; expected no such key for model " +
-                                  material.model);
+        if (!sanisand && t.has(key)) {
+            t.fail(key, "applies to sanisand only; expected no such key for model " +
+                            material.model);
         }
     }
-    const Six stress = initial.six_numbers("stress");
-    const double e = initial.number("void_ratio", Bounds::positive());
     std::vector<double> y(stress.begin(), stress.end());
     y.push_back(e);
     if (const auto* p = std::get_if<HypoplasticityParams>(&material.choice)) {
-        hypoplasticity_state(initial, *p, stress, e, y);
+        hypoplasticity_state(t, *p, stress, e, y);
     } else if (const auto* p = std::get_if<SanisandParams>(&material.choice)) {
-        sanisand_state(initial, *p, stress, y);
+        sanisand_state(t, *p, stress, y);
     }
     return y;
+}
+
+std::vector<double> read_initial_state(const TableReader& initial, const MaterialSpec& material) {
+    initial.allow_only({"stress", "void_ratio", "intergranular_strain", "back_stress", "fabric"});
+    const Six stress = initial.six_numbers("stress");
+    const double e = initial.number("void_ratio", Bounds::positive());
+    return model_state(initial, material, stress, e);
 }
 
 } // namespace ifsim::io

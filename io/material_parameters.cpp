@@ -77,50 +77,44 @@ LinearElasticParams inline_linear_elastic(const TableReader& t) {
                               const std::string& name, const char* known) {
     material.fail("parameters",
                   fmt::format("no built-in {} parameter set \"{}\"; expected one of {} or an "
-                              "inline table [material.parameters] with every value",
-                              model, name, known));
+                              "inline table [{}] with every value",
+                              model, name, known, material.key_path("parameters")));
 }
 
-} // namespace
-
-MaterialSpec read_material(const TableReader& material) {
-    material.allow_only({"model", "parameters", "roughness", "intergranular_strain"});
+// The parameters of `model` from t's key "parameters" (a built-in set's name or an inline
+// table); a missing key takes `default_set` unless that is empty.
+MaterialSpec build_material(const TableReader& t, const std::string& model, double roughness,
+                            bool intergranular_strain, std::string_view default_set) {
     MaterialSpec spec;
-    spec.model = material.choice_or("model", "", {"hypoplasticity", "sanisand", "linear-elastic"});
-    const bool elastic = spec.model == "linear-elastic";
-    if (elastic && material.has("roughness")) {
-        material.fail("roughness", "not used by linear-elastic; expected no roughness key");
+    spec.model = model;
+    spec.roughness = roughness;
+    const toml::node* given = t.find("parameters");
+    if (given == nullptr && default_set.empty()) {
+        t.fail("parameters", fmt::format("missing; expected the name of a built-in set (\"l4c\", "
+                                         "\"karlsruhe-sand\") or an inline table [{}] with "
+                                         "every value of the model",
+                                         t.key_path("parameters")));
     }
-    spec.roughness = material.number_or("roughness", 1.0, Bounds::open_closed(0.0, 1.0));
-    if (spec.model != "hypoplasticity" && material.has("intergranular_strain")) {
-        material.fail("intergranular_strain",
-                      "applies to hypoplasticity only; expected no such key for " + spec.model);
-    }
-
-    const toml::node* given = material.find("parameters");
-    if (given == nullptr) {
-        material.fail("parameters", "missing; expected the name of a built-in set (\"l4c\", "
-                                    "\"karlsruhe-sand\") or an inline table "
-                                    "[material.parameters] with every value of the model");
-    }
-    const bool by_name = given->is_string();
+    const bool by_name = given == nullptr || given->is_string();
     if (!by_name && !given->is_table()) {
-        material.fail("parameters", "expected the name of a built-in set or a table of values");
+        t.fail("parameters", "expected the name of a built-in set or a table of values");
     }
-    spec.parameters = by_name ? given->as_string()->get() : std::string("inline");
+    spec.parameters = given == nullptr ? std::string(default_set)
+                      : by_name        ? given->as_string()->get()
+                                       : std::string("inline");
 
     if (spec.model == "hypoplasticity") {
         HypoplasticityParams p;
         if (by_name) {
             const auto set = parameter_sets::hypoplasticity(spec.parameters);
             if (!set) {
-                unknown_set(material, spec.model, spec.parameters, "\"l4c\", \"karlsruhe-sand\"");
+                unknown_set(t, spec.model, spec.parameters, "\"l4c\", \"karlsruhe-sand\"");
             }
             p = *set;
         } else {
-            p = inline_hypoplasticity(material.table("parameters"));
+            p = inline_hypoplasticity(t.table("parameters"));
         }
-        p.intergranular_strain = material.boolean_or("intergranular_strain", true);
+        p.intergranular_strain = intergranular_strain;
         p.roughness = spec.roughness;
         p.prepare();
         spec.choice = p;
@@ -129,25 +123,58 @@ MaterialSpec read_material(const TableReader& material) {
         if (by_name) {
             const auto set = parameter_sets::sanisand(spec.parameters);
             if (!set) {
-                unknown_set(material, spec.model, spec.parameters, "\"karlsruhe-sand\"");
+                unknown_set(t, spec.model, spec.parameters, "\"karlsruhe-sand\"");
             }
             p = *set;
         } else {
-            p = inline_sanisand(material.table("parameters"));
+            p = inline_sanisand(t.table("parameters"));
         }
         p.roughness = spec.roughness;
         p.prepare();
         spec.choice = p;
     } else {
         if (by_name) {
-            material.fail("parameters", "linear-elastic has no built-in sets; expected an inline "
-                                        "table [material.parameters] with E (kPa) and nu");
+            t.fail("parameters", fmt::format("linear-elastic has no built-in sets; expected an "
+                                             "inline table [{}] with E (kPa) and nu",
+                                             t.key_path("parameters")));
         }
-        LinearElasticParams p = inline_linear_elastic(material.table("parameters"));
+        LinearElasticParams p = inline_linear_elastic(t.table("parameters"));
         p.prepare();
         spec.choice = p;
     }
     return spec;
+}
+
+} // namespace
+
+MaterialSpec read_material(const TableReader& material) {
+    material.allow_only({"model", "parameters", "roughness", "intergranular_strain"});
+    const std::string model =
+        material.choice_or("model", "", {"hypoplasticity", "sanisand", "linear-elastic"});
+    const bool elastic = model == "linear-elastic";
+    if (elastic && material.has("roughness")) {
+        material.fail("roughness", "not used by linear-elastic; expected no roughness key");
+    }
+    const double roughness = material.number_or("roughness", 1.0, Bounds::open_closed(0.0, 1.0));
+    if (model != "hypoplasticity" && material.has("intergranular_strain")) {
+        material.fail("intergranular_strain",
+                      "applies to hypoplasticity only; expected no such key for " + model);
+    }
+    return build_material(material, model, roughness,
+                          material.boolean_or("intergranular_strain", true), "");
+}
+
+MaterialSpec read_model_and_parameters(const TableReader& table, std::string_view default_model,
+                                       std::initializer_list<std::string_view> models,
+                                       double roughness) {
+    const std::string model = table.choice_or("model", default_model, models);
+    std::string_view default_set;
+    if (model == "hypoplasticity") {
+        default_set = "l4c";
+    } else if (model == "sanisand") {
+        default_set = "karlsruhe-sand";
+    }
+    return build_material(table, model, roughness, true, default_set);
 }
 
 } // namespace ifsim::io

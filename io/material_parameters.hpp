@@ -10,7 +10,9 @@
 //                   z_max, c_z
 //   linear-elastic: E (kPa), nu
 
+#include <initializer_list>
 #include <string>
+#include <string_view>
 
 #include "engine/material_choice.hpp"
 #include "io/table_reader.hpp"
@@ -26,5 +28,15 @@ struct MaterialSpec {
 
 // Reads and checks [material]. Throws SceneError.
 MaterialSpec read_material(const TableReader& material);
+
+// The keys `model` and `parameters` of a table that describes a material among other things
+// (an interface-test's [interface] or [sample]); the caller checks the table's other keys.
+// A missing `model` takes `default_model`, a missing `parameters` the model's default set
+// (`l4c` for hypoplasticity, the paper's Table 1 of §5; `karlsruhe-sand` for sanisand);
+// with an empty default_model the key is required. `models` lists the accepted models.
+// Throws SceneError.
+MaterialSpec read_model_and_parameters(const TableReader& table, std::string_view default_model,
+                                       std::initializer_list<std::string_view> models,
+                                       double roughness);
 
 } // namespace ifsim::io

@@ -26,17 +26,16 @@ struct HypoplasticityParams {
     double roughness = 1.0; // kappa <= 1 (Eq. 28); 1 = continuum behaviour
 
     // Derived constants, filled by prepare().
-    double a = 0.0;         // Eq. 30 with kappa*phi_c
-    double alpha_k = 0.0;   // alpha*kappa^2 (Eq. 31)
-    double fb_const = 0.0;  // h_s/n (e_i0/e_c0)^beta / [3 + a^2 - a sqrt3 (...)^alpha_k] (Eq. 32)
+    double a = 0.0;        // Eq. 30 with kappa*phi_c
+    double alpha_k = 0.0;  // alpha*kappa^2 (Eq. 31)
+    double fb_const = 0.0; // h_s/n (e_i0/e_c0)^beta / [3 + a^2 - a sqrt3 (...)^alpha_k] (Eq. 32)
 
     void prepare() {
         const double s = std::sin(roughness * phi_c);
         a = std::sqrt(3.0) * (3.0 - s) / (2.0 * std::sqrt(2.0) * s);
         alpha_k = alpha * roughness * roughness;
-        const double bracket = 3.0 + a * a -
-                               a * std::sqrt(3.0) *
-                                   std::pow((e_i0 - e_d0) / (e_c0 - e_d0), alpha_k);
+        const double bracket =
+            3.0 + a * a - a * std::sqrt(3.0) * std::pow((e_i0 - e_d0) / (e_c0 - e_d0), alpha_k);
         fb_const = h_s / n * std::pow(e_i0 / e_c0, beta) / bracket;
     }
 };
@@ -45,6 +44,8 @@ struct Hypoplasticity {
     static constexpr const char* name = "hypoplasticity";
     static constexpr int n_state = 13;
     static constexpr int h_index = 7;
+    // Integrated by integrate_heun: the engine may refill finished SIMD lanes.
+    static constexpr bool heun_stepper = true;
     static constexpr bool pressure_floor = true;
     using Params = HypoplasticityParams;
     template <class T>
@@ -53,11 +54,11 @@ struct Hypoplasticity {
     // Pressure-dependent quantities of the hypoplastic core at stress T (Bauer law etc.).
     template <class T>
     struct Core {
-        Sym<T> That;      // T / tr T
-        Sym<T> That_dev;  // deviator of That
-        T factor;         // f_b f_e / (That : That)
-        T F;              // Matsuoka-Nakai shape function
-        T f_d;            // pyknotropy factor
+        Sym<T> That;     // T / tr T
+        Sym<T> That_dev; // deviator of That
+        T factor;        // f_b f_e / (That : That)
+        T F;             // Matsuoka-Nakai shape function
+        T f_d;           // pyknotropy factor
     };
 
     template <class T>
@@ -72,7 +73,8 @@ struct Hypoplasticity {
         const T dev_norm = simd::sqrt(dev2);
         const T tan_psi = std::sqrt(3.0) * dev_norm;
         const T safe_dev = simd::max(dev2, T(1.0e-30));
-        T cos3t = -std::sqrt(6.0) * voigt::trace_cube(c.That_dev) / (safe_dev * simd::sqrt(safe_dev));
+        T cos3t =
+            -std::sqrt(6.0) * voigt::trace_cube(c.That_dev) / (safe_dev * simd::sqrt(safe_dev));
         cos3t = simd::select(dev_norm > 1.0e-12, cos3t, T(1.0));
         cos3t = simd::max(T(-1.0), simd::min(T(1.0), cos3t));
         const T denom = simd::max(2.0 + std::sqrt(2.0) * tan_psi * cos3t, T(1.0e-10));
@@ -80,16 +82,19 @@ struct Hypoplasticity {
         c.F = simd::sqrt(simd::max(arg, T(0.0))) - tan_psi / (2.0 * std::sqrt(2.0));
 
         // Bauer compression law for the limit void ratios (3p = -tr T).
+        // Powers as exp(y log x), sharing the logarithms (fewer transcendental calls per rate).
         const T ratio = -trT / p.h_s;
-        const T bauer = simd::exp(-simd::pow(ratio, p.n));
+        const T ratio_n = simd::exp(p.n * simd::log(ratio));
+        const T bauer = simd::exp(-ratio_n);
         const T e_i = p.e_i0 * bauer;
         const T e_c = p.e_c0 * bauer;
         const T e_d = p.e_d0 * bauer;
         const T e = simd::max(e_in, T(1.0e-6));
         // Outside [e_d, e_i] the model is outside its admissible range; f_d = 0 below e_d.
-        c.f_d = simd::pow(simd::max(e - e_d, T(0.0)) / (e_c - e_d), T(p.alpha_k));
-        const T f_e = simd::pow(e_c / e, T(p.beta));
-        const T f_b = p.fb_const * (1.0 + e_i) / e_i * simd::pow(ratio, T(1.0 - p.n));
+        const T fd_base = simd::max(e - e_d, T(0.0)) / (e_c - e_d);
+        c.f_d = simd::select(fd_base > 0.0, simd::exp(p.alpha_k * simd::log(fd_base)), T(0.0));
+        const T f_e = simd::exp(p.beta * simd::log(e_c / e));
+        const T f_b = p.fb_const * (1.0 + e_i) / e_i * (ratio / ratio_n); // (3p/h_s)^(1-n)
         c.factor = f_b * f_e / TT;
         return c;
     }
@@ -119,9 +124,10 @@ struct Hypoplasticity {
     // Intergranular strain quantities for direction D.
     template <class T>
     struct Igs {
-        Sym<T> h_dir;   // h / |h| (zero for h = 0)
-        T rho;          // |h| / R, clamped to 1
-        T rho_chi;      // rho^chi
+        Sym<T> h_dir;            // h / |h| (zero for h = 0)
+        T rho;                   // |h| / R, clamped to 1
+        T log_rho;               // log(rho), shared by rho^chi and rho^beta_R
+        T rho_chi;               // rho^chi
         simd::mask_t<T> loading; // h_dir : D > 0
     };
     template <class T>
@@ -132,7 +138,8 @@ struct Hypoplasticity {
         const T inv = simd::select(nonzero, 1.0 / simd::max(hn, T(1.0e-300)), T(0.0));
         g.h_dir = voigt::scale(h, inv);
         g.rho = simd::min(hn / p.R, T(1.0));
-        g.rho_chi = simd::pow(g.rho, T(p.chi));
+        g.log_rho = simd::log(simd::max(g.rho, T(1.0e-300)));
+        g.rho_chi = simd::select(g.rho > 0.0, simd::exp(p.chi * g.log_rho), T(0.0));
         g.loading = voigt::ddot(g.h_dir, D) > 0.0;
         return g;
     }
@@ -147,8 +154,8 @@ struct Hypoplasticity {
         if (!p.intergranular_strain) {
             // L : X + N (D/|D|) : X
             const T dn = voigt::norm(D);
-            const T proj = simd::select(dn > 0.0, voigt::ddot(D, X) / simd::max(dn, T(1.0e-300)),
-                                        T(0.0));
+            const T proj =
+                simd::select(dn > 0.0, voigt::ddot(D, X) / simd::max(dn, T(1.0e-300)), T(0.0));
             return voigt::axpy(LX, proj, N);
         }
         const Sym<T> Lh = apply_L(p, c, g.h_dir);
@@ -179,7 +186,7 @@ struct Hypoplasticity {
         dy[state_index::void_ratio] = (1.0 + e) * voigt::trace(de);
         Sym<T> dh = de;
         if (p.intergranular_strain) {
-            const T rho_b = simd::pow(g.rho, T(p.beta_R));
+            const T rho_b = simd::select(g.rho > 0.0, simd::exp(p.beta_R * g.log_rho), T(0.0));
             const T proj = simd::select(g.loading, rho_b * voigt::ddot(g.h_dir, de), T(0.0));
             dh = voigt::axpy(de, -proj, g.h_dir);
         } else {

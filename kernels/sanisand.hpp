@@ -26,6 +26,8 @@ struct Sanisand {
     static constexpr int alpha_index = sanisand::alpha_index;
     static constexpr int z_index = sanisand::z_index;
     static constexpr int alpha_in_index = sanisand::alpha_in_index;
+    // Integrated by integrate_heun: the engine may refill finished SIMD lanes.
+    static constexpr bool heun_stepper = false;
     static constexpr bool pressure_floor = true;
     using Params = SanisandParams;
     template <class T>
