@@ -233,103 +233,173 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
 
     const std::vector<int> rows = {0, 3, 4, 1, 2};
     const std::vector<int> cols = {0, 3, 4};
-    double guess_g[2] = {0.0, 0.0};
+    double guess_g[2] = {0.0, 0.0}; // per full step
     double guess_e11 = 0.0;
     int step = 0;
+    // One evaluation of the step equations at the unknowns x = (dg_T1, dg_T2, deps_11) for the
+    // plate displacement increment du (this leaves the interface's trial state at x).
+    struct Eval {
+        bool ok = false;
+        std::string why;
+        double R[3] = {0.0, 0.0, 0.0};
+        double rmax = 0.0;
+        Sym<double> de{};
+        typename PointEvaluator<Ms>::Eval sample;
+        InterfaceResponse iface;
+    };
+    auto evaluate = [&](const double x[3], const double du[2]) {
+        Eval e;
+        const double t_N = t_N0 - K * H * (eps11 + x[2]);
+        e.de = {x[2], 0.0, 0.0, (du[0] - x[0]) / (2.0 * H), (du[1] - x[1]) / (2.0 * H), 0.0};
+        e.sample = sample.evaluate(ys, e.de);
+        if (e.sample.status < -0.5) {
+            e.why = "the sample's constitutive update failed";
+            return e;
+        }
+        // Novel: the in-plane interface stresses follow the adjacent continuum (Eqs. 19-20).
+        e.iface = iface.evaluate(t_N, x[0], x[1], e.sample.y[1], e.sample.y[2]);
+        if (!e.iface.ok) {
+            e.why = fmt::format("the interface point failed (Algorithm 1 Newton residual {:.3g}, "
+                                "or band thickness / model failure)",
+                                e.iface.residual);
+            return e;
+        }
+        e.R[0] = e.iface.tau[0] - e.sample.y[3];
+        e.R[1] = e.iface.tau[1] - e.sample.y[4];
+        e.R[2] = e.sample.y[0] - t_N;
+        e.rmax = std::max({std::abs(e.R[0]), std::abs(e.R[1]), std::abs(e.R[2])}) /
+                 std::max(std::abs(t_N), 1.0);
+        e.ok = true;
+        return e;
+    };
+    // d R / d x at an evaluation: interface Jacobian (Eq. 37 lanes and, for the novel
+    // formulation, d tau / d s_p) and the sample's tangent by perturbation.
+    auto jacobian = [&](const Eval& e) {
+        const Eigen::MatrixXd Call =
+            sample.jacobian(ys, e.de, rows, cols, e.sample.substeps, 1.0e-7);
+        const Eigen::MatrixXd C = Call.topRows(3);     // rows 11, 12, 13
+        const Eigen::MatrixXd Cp = Call.bottomRows(2); // rows 22, 33
+        const double dtN = -K * H;
+        const InterfaceResponse& ir = e.iface;
+        Eigen::Matrix3d J;
+        for (int a = 0; a < 2; ++a) {
+            for (int b = 0; b < 2; ++b) {
+                J(a, b) = ir.dtau_dg[a][b] + C(1 + a, 1 + b) / (2.0 * H) -
+                          (ir.dtau_dsp[a][0] * Cp(0, 1 + b) + ir.dtau_dsp[a][1] * Cp(1, 1 + b)) /
+                              (2.0 * H);
+            }
+            J(a, 2) = ir.dtau_dtN[a] * dtN - C(1 + a, 0) + ir.dtau_dsp[a][0] * Cp(0, 0) +
+                      ir.dtau_dsp[a][1] * Cp(1, 0);
+            J(2, a) = -C(0, 1 + a) / (2.0 * H);
+        }
+        J(2, 2) = C(0, 0) - dtN;
+        return J;
+    };
+    // Newton on x for one plate displacement increment, with a backtracking line search (the
+    // step equations have near-singular points at the peak, where sample and interface soften
+    // in series). On success the interface's trial state is at the solution.
+    struct Solve {
+        bool ok = false;
+        std::string why;
+        double x[3] = {0.0, 0.0, 0.0};
+        StateVec<double, NS> ys{};
+        int iterations = 0;
+    };
+    auto solve = [&](const double du[2], const double guess[3]) {
+        Solve out;
+        double x[3] = {guess[0], guess[1], guess[2]};
+        Eval cur = evaluate(x, du);
+        for (int it = 0;; ++it) {
+            if (!cur.ok) {
+                out.why = cur.why;
+                return out;
+            }
+            if (cur.rmax <= spec.newton_tolerance) {
+                out.ok = true;
+                std::copy(x, x + 3, out.x);
+                out.ys = cur.sample.y;
+                out.iterations = it;
+                return out;
+            }
+            if (it == spec.max_newton_iterations) {
+                out.why = fmt::format("the step's Newton iteration did not converge in {} "
+                                      "iterations (relative residual {:.3g})",
+                                      spec.max_newton_iterations, cur.rmax);
+                return out;
+            }
+            ++result.counters.newton_iterations;
+            const Eigen::Vector3d dx =
+                jacobian(cur).fullPivLu().solve(-Eigen::Vector3d(cur.R[0], cur.R[1], cur.R[2]));
+            if (!dx.allFinite()) {
+                out.why = "singular step Jacobian";
+                return out;
+            }
+            double alpha = 1.0;
+            double xt[3];
+            Eval trial;
+            for (int ls = 0; ls < 4; ++ls, alpha *= 0.5) {
+                for (int c = 0; c < 3; ++c) {
+                    xt[c] = x[c] + alpha * dx(c);
+                }
+                trial = evaluate(xt, du);
+                if (trial.ok && trial.rmax < cur.rmax) {
+                    break;
+                }
+            }
+            std::copy(xt, xt + 3, x);
+            cur = trial;
+        }
+    };
+
+    // Largest number of halvings of a step before the run gives up.
+    constexpr int max_cuts = 6;
     for (std::size_t s = 0; s < spec.stages.size(); ++s) {
         const InterfaceStage& st = spec.stages[s];
-        const double du[2] = {st.du_t1 / st.steps, st.du_t2 / st.steps};
+        const double du_step[2] = {st.du_t1 / st.steps, st.du_t2 / st.steps};
         for (int k = 1; k <= st.steps; ++k) {
             ++step;
-            ++result.counters.increments;
-            double x[3] = {guess_g[0], guess_g[1], guess_e11};
-            bool converged = false;
+            // Take the step whole if possible; on failure halve the rest, committing every
+            // sub-step that converged (each is a valid increment of the test).
+            double done = 0.0;
+            double fraction = 1.0;
+            int cuts = 0;
+            int iterations = 0;
             std::string why;
-            int it = 0;
-            StateVec<double, NS> ys_new = ys;
-            for (; it <= spec.max_newton_iterations; ++it) {
-                const double t_N = t_N0 - K * H * (eps11 + x[2]);
-                const Sym<double> de = {
-                    x[2], 0.0, 0.0, (du[0] - x[0]) / (2.0 * H), (du[1] - x[1]) / (2.0 * H), 0.0};
-                const auto ev = sample.evaluate(ys, de);
-                if (ev.status < -0.5) {
-                    why = "the sample's constitutive update failed";
-                    break;
+            while (done < 1.0 - 1.0e-12) {
+                const double f = std::min(fraction, 1.0 - done);
+                const double du[2] = {du_step[0] * f, du_step[1] * f};
+                const double guess[3] = {guess_g[0] * f, guess_g[1] * f, guess_e11 * f};
+                const Solve sol = solve(du, guess);
+                if (!sol.ok) {
+                    why = sol.why;
+                    if (++cuts > max_cuts) {
+                        break;
+                    }
+                    fraction = 0.5 * f;
+                    continue;
                 }
-                // Novel: the in-plane interface stresses follow the adjacent continuum (Eqs.
-                // 19-20).
-                const auto ir = iface.evaluate(t_N, x[0], x[1], ev.y[1], ev.y[2]);
-                if (!ir.ok) {
-                    why = fmt::format("the interface point failed (Algorithm 1 Newton residual "
-                                      "{:.3g}, or band thickness / model failure)",
-                                      ir.residual);
-                    break;
-                }
-                const double R[3] = {ir.tau[0] - ev.y[3], ir.tau[1] - ev.y[4], ev.y[0] - t_N};
-                const double scale = std::max(std::abs(t_N), 1.0);
-                const double rmax =
-                    std::max({std::abs(R[0]), std::abs(R[1]), std::abs(R[2])}) / scale;
-                if (rmax <= spec.newton_tolerance) {
-                    converged = true;
-                    ys_new = ev.y;
-                    break;
-                }
-                if (it == spec.max_newton_iterations) {
-                    why = fmt::format("the step's Newton iteration did not converge in {} "
-                                      "iterations (relative residual {:.3g})",
-                                      spec.max_newton_iterations, rmax);
-                    break;
-                }
-                ++result.counters.newton_iterations;
-                // Sample tangent: rows 11, 12, 13 and the in-plane rows 22, 33; columns 11, 12, 13.
-                const Eigen::MatrixXd Call =
-                    sample.jacobian(ys, de, rows, cols, ev.substeps, 1.0e-7);
-                const Eigen::MatrixXd C = Call.topRows(3);
-                const Eigen::MatrixXd Cp = Call.bottomRows(2);
-                const double dtN = -K * H;
-                Eigen::Matrix3d J;
+                iface.commit(result);
+                ys = sol.ys;
+                eps11 += sol.x[2];
                 for (int a = 0; a < 2; ++a) {
-                    for (int b = 0; b < 2; ++b) {
-                        J(a, b) = ir.dtau_dg[a][b] + C(1 + a, 1 + b) / (2.0 * H);
-                    }
-                    // Novel: tau also moves with the sample's in-plane stresses (s_p = sigma_22,
-                    // 33).
-                    J(a, 2) = ir.dtau_dtN[a] * dtN - C(1 + a, 0) + ir.dtau_dsp[a][0] * Cp(0, 0) +
-                              ir.dtau_dsp[a][1] * Cp(1, 0);
-                    for (int b = 0; b < 2; ++b) {
-                        J(a, b) +=
-                            -(ir.dtau_dsp[a][0] * Cp(0, 1 + b) + ir.dtau_dsp[a][1] * Cp(1, 1 + b)) /
-                            (2.0 * H);
-                    }
-                    J(2, a) = -C(0, 1 + a) / (2.0 * H);
+                    u_t[a] += du[a];
+                    slip[a] += sol.x[a];
+                    guess_g[a] = sol.x[a] / f;
                 }
-                J(2, 2) = C(0, 0) - dtN;
-                const Eigen::Vector3d dx = J.fullPivLu().solve(-Eigen::Vector3d(R[0], R[1], R[2]));
-                if (!dx.allFinite()) {
-                    why = "singular step Jacobian";
-                    break;
-                }
-                for (int c = 0; c < 3; ++c) {
-                    x[c] += dx(c);
-                }
+                guess_e11 = sol.x[2] / f;
+                iterations += sol.iterations;
+                done += f;
             }
-            if (!converged) {
+            if (done < 1.0 - 1.0e-12) {
                 result.ok = false;
-                result.reason = fmt::format("step {} (stage {}, step {} of {}): {}", step, s + 1, k,
-                                            st.steps, why);
+                result.reason = fmt::format("step {} (stage {}, step {} of {}): {} (also after "
+                                            "cutting the step into up to {} parts)",
+                                            step, s + 1, k, st.steps, why, 1 << max_cuts);
                 break;
             }
-            // The interface was last evaluated at the converged iterate: commit it.
-            iface.commit(result);
-            ys = ys_new;
-            eps11 += x[2];
-            for (int a = 0; a < 2; ++a) {
-                u_t[a] += du[a];
-                slip[a] += x[a];
-                guess_g[a] = x[a];
-            }
-            guess_e11 = x[2];
-            emit(step, static_cast<int>(s) + 1, it);
+            ++result.counters.increments;
+            result.counters.step_cuts += cuts;
+            emit(step, static_cast<int>(s) + 1, iterations);
         }
         if (!result.ok) {
             break;

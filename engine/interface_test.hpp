@@ -64,6 +64,7 @@ struct InterfaceRow {
 struct InterfaceTestCounters {
     long increments = 0;
     long newton_iterations = 0;
+    long step_cuts = 0;         // halvings of steps whose Newton failed
     double subincrements = 0.0; // Algorithm 1 sub-increments (base evaluations)
     double interface_newton_iterations = 0.0;
     double constitutive_evaluations = 0.0; // interface (all lanes) + sample
