@@ -43,6 +43,8 @@ struct ContactReport {
     std::size_t failed = 0;
     std::size_t first_failed = std::numeric_limits<std::size_t>::max();
     double first_failed_residual = 0.0;
+    double first_failed_cause = 0.0; // interface_failure code
+    std::size_t band_clamped = 0;    // points whose d_s was held at its floor
     std::size_t open = 0;
     double lanes = 0.0;         // evaluations of Algorithm 1 (base + perturbed)
     double subincrements = 0.0; // base lanes
@@ -58,8 +60,8 @@ namespace detail {
 namespace lane_col {
 inline constexpr int t_N = 0, dg1 = 1, dg2 = 2, s_p1 = 3, s_p2 = 4, forced = 5;
 inline constexpr int status = 6, subincrements = 7, newton = 8, evaluations = 9, msub = 10,
-                     residual = 11, open = 12;
-inline constexpr int state = 13; // then NS + 6 state columns
+                     residual = 11, open = 12, cause = 13, band_clamped = 14;
+inline constexpr int state = 15; // then NS + 6 state columns
 } // namespace lane_col
 
 template <class M, class T>
@@ -113,6 +115,8 @@ void run_lanes(const typename M::Params& mp, const InterfaceSettings& s, ColumnS
         store(msub, i, stats.model_substeps);
         store(residual, i, stats.residual);
         store(open, i, stats.open);
+        store(cause, i, stats.cause);
+        store(band_clamped, i, stats.band_clamped);
     }
 }
 
@@ -194,9 +198,11 @@ public:
                 if (i < rep.first_failed) {
                     rep.first_failed = i;
                     rep.first_failed_residual = cp.output(contact_col::residual)[i];
+                    rep.first_failed_cause = cp.output(contact_col::cause)[i];
                 }
             }
             rep.open += cp.output(contact_col::open)[i] > 0.5 ? 1 : 0;
+            rep.band_clamped += cp.output(contact_col::band_clamped)[i] > 0.5 ? 1 : 0;
             rep.subincrements += cp.output(contact_col::subincrements)[i];
             rep.newton_iterations += cp.output(contact_col::newton_iterations)[i];
             rep.constitutive_evaluations += cp.output(contact_col::evaluations)[i];
@@ -285,10 +291,14 @@ private:
         const int n_pert = blocks > 1 ? 2 * ndim : 0;
         for (std::size_t i = b; i < e; ++i) {
             double st = lanes_.col(status)[i];
+            double why = lanes_.col(cause)[i];
             double evals = 0.0;
             for (int k = 0; k < blocks; ++k) {
                 evals += lanes_.col(evaluations)[k * P + i];
-                st = std::min(st, lanes_.col(status)[k * P + i]);
+                if (lanes_.col(status)[k * P + i] < st) {
+                    st = lanes_.col(status)[k * P + i];
+                    why = lanes_.col(cause)[k * P + i];
+                }
             }
             for (int c = 0; c < ContactPoints<M>::n_state_cols; ++c) {
                 cp.trial(c)[i] = lanes_.col(state + c)[i];
@@ -314,6 +324,8 @@ private:
             cp.output(contact_col::model_substeps)[i] = lanes_.col(msub)[i];
             cp.output(contact_col::residual)[i] = lanes_.col(residual)[i];
             cp.output(contact_col::open)[i] = lanes_.col(open)[i];
+            cp.output(contact_col::cause)[i] = why;
+            cp.output(contact_col::band_clamped)[i] = lanes_.col(band_clamped)[i];
         }
     }
 

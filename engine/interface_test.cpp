@@ -21,6 +21,7 @@ double seconds_since(Clock::time_point t0) {
 // What the driver needs of the interface point after an evaluation.
 struct InterfaceResponse {
     bool ok = true;
+    double cause = 0.0; // interface_failure code when !ok
     double tau[2] = {0.0, 0.0};
     double dtau_dg[2][2] = {{0.0, 0.0}, {0.0, 0.0}}; // d tau_a / d dg_T,b
     double dtau_dtN[2] = {0.0, 0.0};
@@ -86,6 +87,8 @@ public:
         last_subincrements_ = rep.subincrements;
         last_newton_ = rep.newton_iterations;
         r.ok = rep.ok();
+        r.cause = rep.first_failed_cause;
+        last_band_clamped_ = rep.band_clamped > 0;
         r.residual = points_.output(contact_col::residual)[0];
         r.tau[0] = points_.output(contact_col::traction + 1)[0];
         r.tau[1] = points_.output(contact_col::traction + 2)[0];
@@ -101,6 +104,7 @@ public:
 
     void commit(InterfaceTestResult& res) {
         points_.commit();
+        res.counters.band_clamped_steps += last_band_clamped_ ? 1 : 0;
         res.counters.subincrements += last_subincrements_;
         res.counters.interface_newton_iterations += last_newton_;
     }
@@ -146,6 +150,7 @@ private:
     ContactPoints<Mi> points_;
     ContactEngine<Mi> engine_;
     double last_subincrements_ = 0.0;
+    bool last_band_clamped_ = false;
     double last_newton_ = 0.0;
 };
 
@@ -156,8 +161,18 @@ public:
         tau_[0] = tau1;
         tau_[1] = tau2;
     }
+    CoulombInterface(const CoulombParams& p, double tau1, double tau2, InterfaceTestResult& res)
+        : CoulombInterface(p, tau1, tau2) {
+        res_ = &res;
+    }
     InterfaceResponse evaluate(double t_N, double dg1, double dg2, double, double) {
+        const auto t0 = Clock::now();
         const auto c = coulomb_update<double>(p_, t_N, tau_[0], tau_[1], dg1, dg2);
+        if (res_) {
+            res_->interface_seconds += seconds_since(t0);
+            res_->counters.interface_evaluations += 1.0;
+            res_->counters.constitutive_evaluations += 1.0;
+        }
         InterfaceResponse r;
         r.tau[0] = trial_[0] = c.tau1;
         r.tau[1] = trial_[1] = c.tau2;
@@ -180,6 +195,7 @@ public:
 
 private:
     CoulombParams p_;
+    InterfaceTestResult* res_ = nullptr;
     double tau_[2] = {0.0, 0.0};
     double trial_[2] = {0.0, 0.0};
 };
@@ -214,7 +230,7 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
         row.u_t1 = u_t[0];
         row.u_t2 = u_t[1];
         row.u_n = eps11 * H;
-        row.t_n = ys[0];
+        row.t_n = t_N0 - K * H * eps11; // the prescribed normal contact stress
         row.t_t1 = ys[3];
         row.t_t2 = ys[4];
         row.sample_s11 = ys[0];
@@ -259,9 +275,8 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
         // Novel: the in-plane interface stresses follow the adjacent continuum (Eqs. 19-20).
         e.iface = iface.evaluate(t_N, x[0], x[1], e.sample.y[1], e.sample.y[2]);
         if (!e.iface.ok) {
-            e.why = fmt::format("the interface point failed (Algorithm 1 Newton residual {:.3g}, "
-                                "or band thickness / model failure)",
-                                e.iface.residual);
+            e.why = fmt::format("the interface point failed: {} (Algorithm 1 residual {:.3g})",
+                                interface_failure::describe(e.iface.cause), e.iface.residual);
             return e;
         }
         e.R[0] = e.iface.tau[0] - e.sample.y[3];
@@ -422,8 +437,8 @@ InterfaceTestResult run_interface_test(const InterfaceTestSpec& spec,
         [&](const auto& sp) {
             using Ms = typename model_of<std::decay_t<decltype(sp)>>::type;
             if (spec.kind == InterfaceKind::coulomb) {
-                CoulombInterface iface(spec.coulomb, spec.sample_state.at(3),
-                                       spec.sample_state.at(4));
+CoulombInterface iface(spec.coulomb, spec.sample_state.at(3),
+                                       spec.sample_state.at(4), result);
                 return drive<Ms>(spec, sp, iface, result, on_row);
             }
             return std::visit(

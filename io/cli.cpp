@@ -18,7 +18,10 @@ namespace {
 
 constexpr const char* app_footer = R"(
   ifsim run SCENE.toml --out DIR [--set KEY=VALUE]... [--threads N] [--scalar]
-  ifsim kernel-bench --model MODEL --points N [--threads T] [--scalar] [--seconds S]
+  ifsim kernel-bench --model MODEL [--formulation F] --points N [--threads T] [--scalar]
+                     [--seconds S] [--jacobian J] [--subincrement fixed|adaptive]
+Scene kinds: element-test (one material point), interface-test (simple interface shear:
+a sample in series with one interface point, paper section 5).
 Units kPa and m; compression negative; Voigt order 11 22 33 12 13 23 with tensor shear
 strains. Scene schema: docs/scenes.md; example scenes: scenes/. `ifsim run --help` and
 `ifsim kernel-bench --help` explain each command.)";
@@ -34,9 +37,14 @@ Exit codes: 0 ok, 1 output could not be written, 2 bad command line or scene, 3 
 
 constexpr const char* bench_footer = R"(
 Prints one JSON object: model, formulation, points, threads, path (simd | scalar),
-evaluations_per_second, points_per_second, and details (lanes, updates, wall_s,
-substeps_per_evaluation, ...). The states are never committed: every repetition
-integrates the same valid states with the same increments.)";
+evaluations_per_second (constitutive evaluations, perturbed lanes included),
+points_per_second (complete point updates; for an interface formulation the whole
+Algorithm 1 with its Jacobian columns), and details (lanes, updates, wall_s, ...; for an
+interface formulation lanes_per_point and subincrements_per_point). The states are never
+committed: every repetition integrates the same valid states with the same increments.
+--formulation novel | stutz times the contact engine with --model hypoplasticity | sanisand
+as interface model; --formulation coulomb times batched Coulomb friction (no continuum model:
+--model coulomb, or any model name, which is then not used).)";
 
 } // namespace
 
@@ -71,13 +79,16 @@ int run_cli(int argc, const char* const* argv) {
     KernelBenchOptions bench;
     CLI::App* bench_cmd = app.add_subcommand(
         "kernel-bench", "Time batched constitutive updates of N varied points (prints JSON)");
-    bench_cmd->add_option("--model", bench.model, "hypoplasticity | sanisand | linear-elastic")
+    bench_cmd
+        ->add_option("--model", bench.model,
+                     "hypoplasticity | sanisand | linear-elastic (| coulomb with --formulation "
+                     "coulomb)")
         ->required();
     bench_cmd->add_option("--parameters", bench.parameters, "Built-in parameter set")
         ->capture_default_str();
     bench_cmd
         ->add_option("--formulation", bench.formulation,
-                     "Interface formulation (only none is available yet)")
+                     "none (the continuum model alone) | novel | stutz | coulomb")
         ->capture_default_str();
     bench_cmd->add_option("--points", bench.points, "Number of material points")->required();
     bench_cmd->add_option("--threads", bench.threads, "Worker threads (default: all cores)")
@@ -90,6 +101,23 @@ int run_cli(int argc, const char* const* argv) {
     bench_cmd
         ->add_option("--increment", bench.strain_increment,
                      "Norm of every point's strain increment")
+        ->capture_default_str();
+    bench_cmd
+        ->add_option("--jacobian", bench.jacobian,
+                     "Interface Jacobian: perturbation (Eq. 37) | full-perturbation (Eqs. "
+                     "39-40) | analytical (Eq. B3)")
+        ->capture_default_str();
+    bench_cmd
+        ->add_option("--subincrement", bench.subincrement,
+                     "Algorithm 1 sub-increments: fixed | adaptive")
+        ->capture_default_str();
+    bench_cmd
+        ->add_option("--gap-increment", bench.gap_increment,
+                     "Typical tangential gap increment per interface update (m)")
+        ->capture_default_str();
+    bench_cmd
+        ->add_option("--shear-band-thickness", bench.shear_band_thickness,
+                     "Interface shear band thickness d_s0 (m)")
         ->capture_default_str();
     bench_cmd->footer(bench_footer);
 

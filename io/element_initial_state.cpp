@@ -126,8 +126,8 @@ std::vector<double> model_state(const TableReader& t, const MaterialSpec& materi
     }
     for (const char* key : {"back_stress", "fabric"}) {
         if (!sanisand && t.has(key)) {
-            t.fail(key, "applies to sanisand only; expected no such key for model " +
-                            material.model);
+            t.fail(key,
+                   "applies to sanisand only; expected no such key for model " + material.model);
         }
     }
     std::vector<double> y(stress.begin(), stress.end());

@@ -33,9 +33,8 @@ InterfaceRunOutcome run_interface_test_scene(const InterfaceTestScene& scene,
     HistoryWriter history(dir, interface_history_columns());
     ProgressLine line(progress, scene.total_steps(), static_cast<int>(scene.spec.stages.size()));
     const double t_N0 = scene.initial_normal_stress();
-    const double K = scene.spec.control == NormalControl::constant_stiffness
-                         ? scene.spec.normal_stiffness
-                         : 0.0;
+    const double K =
+        scene.spec.control == NormalControl::constant_stiffness ? scene.spec.normal_stiffness : 0.0;
     const auto on_row = [&](const InterfaceRow& row) {
         const auto t0 = Clock::now();
         write_interface_row(history, row, contact_normal_stress(t_N0, K, row));
@@ -65,6 +64,8 @@ void add_interface_test_results(RunSummary& summary, const InterfaceTestScene& s
     summary.reason = r.reason;
     summary.counters = {{"increments", c.increments},
                         {"newton_iterations", c.newton_iterations},
+                        {"step_cuts", c.step_cuts},
+                        {"band_clamped_steps", c.band_clamped_steps},
                         {"subincrements", rounded(c.subincrements)},
                         {"constitutive_evaluations", rounded(c.constitutive_evaluations)},
                         {"interface_newton_iterations", rounded(c.interface_newton_iterations)},

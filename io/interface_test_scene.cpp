@@ -15,16 +15,27 @@ namespace {
 using Six = std::array<double, 6>;
 
 // [interface] keys of the continuum formulations (novel, stutz) and of Coulomb friction.
-constexpr std::string_view continuum_keys[] = {
-    "model",     "parameters", "roughness",    "shear_band_thickness", "stutz_initial_stress",
-    "subincrement", "max_subincrement", "tolerance", "jacobian", "perturbation",
-    "void_ratio", "intergranular_strain", "back_stress", "fabric"};
+constexpr std::string_view continuum_keys[] = {"model",
+                                               "parameters",
+                                               "roughness",
+                                               "shear_band_thickness",
+                                               "stutz_initial_stress",
+                                               "subincrement",
+                                               "max_subincrement",
+                                               "tolerance",
+                                               "jacobian",
+                                               "perturbation",
+                                               "void_ratio",
+                                               "intergranular_strain",
+                                               "back_stress",
+                                               "fabric"};
 constexpr std::string_view coulomb_keys[] = {"friction_coefficient", "tangential_stiffness"};
 
 // [integration] keys that tune Algorithm 1 (no meaning for Coulomb friction).
 constexpr std::string_view algorithm1_keys[] = {"interface_newton_jacobian",
                                                 "interface_max_newton_iterations",
-                                                "polish_iterations", "adaptive_tolerance"};
+                                                "polish_iterations", "adaptive_tolerance",
+                                                "band_collapse", "min_band_fraction"};
 
 template <std::size_t N>
 void reject_keys(const TableReader& t, const std::string_view (&keys)[N], const std::string& why) {
@@ -189,14 +200,14 @@ void read_integration(const TableReader& root, InterfaceTestScene& scene) {
     const TableReader t = root.table("integration");
     t.allow_only({"tolerance", "min_pressure", "max_substeps", "newton_tolerance",
                   "max_newton_iterations", "interface_newton_jacobian",
-                  "interface_max_newton_iterations", "polish_iterations", "adaptive_tolerance"});
+                  "interface_max_newton_iterations", "polish_iterations", "adaptive_tolerance",
+                  "band_collapse", "min_band_fraction"});
     InterfaceTestSpec& spec = scene.spec;
     // The continuum models' own integration, for the sample and the interface model alike.
     IntegrationSettings& m = spec.sample_update.settings;
     m.tolerance = t.number_or("tolerance", m.tolerance, Bounds::open(0.0, 1.0));
     m.min_pressure = t.number_or("min_pressure", m.min_pressure, Bounds::positive());
-    m.max_substeps =
-        static_cast<int>(t.integer_or("max_substeps", m.max_substeps, 1, 100'000'000));
+    m.max_substeps = static_cast<int>(t.integer_or("max_substeps", m.max_substeps, 1, 100'000'000));
     spec.contact.interface.model = m;
     spec.newton_tolerance =
         t.number_or("newton_tolerance", spec.newton_tolerance, Bounds::open(0.0, 1.0));
@@ -209,16 +220,20 @@ void read_integration(const TableReader& root, InterfaceTestScene& scene) {
         return;
     }
     InterfaceSettings& s = spec.contact.interface;
-    s.newton_jacobian = t.choice_or("interface_newton_jacobian", "rate",
-                                    {"rate", "perturbation"}) == "rate"
-                            ? NewtonJacobian::rate
-                            : NewtonJacobian::perturbation;
+    s.newton_jacobian =
+        t.choice_or("interface_newton_jacobian", "rate", {"rate", "perturbation"}) == "rate"
+            ? NewtonJacobian::rate
+            : NewtonJacobian::perturbation;
     s.max_newton_iterations = static_cast<int>(
         t.integer_or("interface_max_newton_iterations", s.max_newton_iterations, 1, 10'000));
     s.polish_iterations =
         static_cast<int>(t.integer_or("polish_iterations", s.polish_iterations, 0, 10));
     s.adaptive_tolerance =
         t.number_or("adaptive_tolerance", s.adaptive_tolerance, Bounds::open(0.0, 1.0));
+    // Eq. 26 can shrink d_s towards zero: stop there (default) or hold it at its floor.
+    s.clamp_band = t.choice_or("band_collapse", "fail", {"fail", "clamp"}) == "clamp";
+    s.min_band_fraction =
+        t.number_or("min_band_fraction", s.min_band_fraction, Bounds::open(0.0, 1.0));
 }
 
 } // namespace

@@ -8,6 +8,7 @@
 #include "engine/batched_update.hpp"
 #include "engine/material_choice.hpp"
 #include "engine/sample_states.hpp"
+#include "io/interface_kernel_bench.hpp"
 #include "io/summary_writer.hpp"
 #include "io/thread_limit.hpp"
 #include "kernels/parameter_sets.hpp"
@@ -17,40 +18,6 @@ namespace ifsim::io {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-MaterialChoice bench_material(const KernelBenchOptions& o) {
-    if (o.model == "hypoplasticity") {
-        auto p = parameter_sets::hypoplasticity(o.parameters);
-        if (!p) {
-            throw std::invalid_argument(
-                fmt::format("--parameters: no built-in hypoplasticity set \"{}\"; expected l4c or "
-                            "karlsruhe-sand",
-                            o.parameters));
-        }
-        p->roughness = o.roughness;
-        p->prepare();
-        return *p;
-    }
-    if (o.model == "sanisand") {
-        auto p = parameter_sets::sanisand(o.parameters);
-        if (!p) {
-            throw std::invalid_argument(fmt::format(
-                "--parameters: no built-in sanisand set \"{}\"; expected karlsruhe-sand",
-                o.parameters));
-        }
-        p->roughness = o.roughness;
-        p->prepare();
-        return *p;
-    }
-    if (o.model == "linear-elastic") {
-        LinearElasticParams p;
-        p.prepare();
-        return p;
-    }
-    throw std::invalid_argument(fmt::format(
-        "--model: unknown model \"{}\"; expected hypoplasticity, sanisand or linear-elastic",
-        o.model));
-}
 
 struct Timing {
     long updates = 0;
@@ -86,13 +53,41 @@ Timing time_updates(const typename M::Params& params, const KernelBenchOptions& 
 
 } // namespace
 
-nlohmann::ordered_json run_kernel_bench(const KernelBenchOptions& o) {
-    if (!o.formulation.empty() && o.formulation != "none") {
-        throw std::invalid_argument(fmt::format(
-            "--formulation {}: interface formulations are not available yet in this build; "
-            "expected none (the continuum model alone)",
-            o.formulation));
+MaterialChoice kernel_bench_material(const KernelBenchOptions& o) {
+    if (o.model == "hypoplasticity") {
+        auto p = parameter_sets::hypoplasticity(o.parameters);
+        if (!p) {
+            throw std::invalid_argument(
+                fmt::format("--parameters: no built-in hypoplasticity set \"{}\"; expected l4c or "
+                            "karlsruhe-sand",
+                            o.parameters));
+        }
+        p->roughness = o.roughness;
+        p->prepare();
+        return *p;
     }
+    if (o.model == "sanisand") {
+        auto p = parameter_sets::sanisand(o.parameters);
+        if (!p) {
+            throw std::invalid_argument(fmt::format(
+                "--parameters: no built-in sanisand set \"{}\"; expected karlsruhe-sand",
+                o.parameters));
+        }
+        p->roughness = o.roughness;
+        p->prepare();
+        return *p;
+    }
+    if (o.model == "linear-elastic") {
+        LinearElasticParams p;
+        p.prepare();
+        return p;
+    }
+    throw std::invalid_argument(fmt::format(
+        "--model: unknown model \"{}\"; expected hypoplasticity, sanisand or linear-elastic",
+        o.model));
+}
+
+nlohmann::ordered_json run_kernel_bench(const KernelBenchOptions& o) {
     if (o.points < 1) {
         throw std::invalid_argument("--points: expected a number of points >= 1");
     }
@@ -105,7 +100,14 @@ nlohmann::ordered_json run_kernel_bench(const KernelBenchOptions& o) {
     if (!(o.strain_increment > 0.0 && o.strain_increment < 0.1)) {
         throw std::invalid_argument("--increment: expected a strain increment norm in (0, 0.1)");
     }
-    const MaterialChoice material = bench_material(o);
+    if (!o.formulation.empty() && o.formulation != "none") {
+        return run_interface_kernel_bench(o);
+    }
+    if (o.model == "coulomb") {
+        throw std::invalid_argument("--model coulomb: Coulomb friction is an interface model; "
+                                    "expected --formulation coulomb with it");
+    }
+    const MaterialChoice material = kernel_bench_material(o);
     const ThreadLimit threads(o.threads);
     const Timing t = std::visit(
         [&](const auto& params) {

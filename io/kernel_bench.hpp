@@ -11,21 +11,33 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/material_choice.hpp"
+
 namespace ifsim::io {
 
 struct KernelBenchOptions {
     std::string model;                         // hypoplasticity | sanisand | linear-elastic
     std::string parameters = "karlsruhe-sand"; // built-in set (not used by linear-elastic)
-    std::string formulation = "none";          // interface formulation: none only, for now
+    std::string formulation = "none";          // none | novel | stutz | coulomb
     double roughness = 1.0;
     long points = 0;
     int threads = 0; // 0 = all cores
     bool scalar = false;
     double seconds = 1.0;
     double strain_increment = 1.0e-4;
+    // Interface formulations (interface_kernel_bench.hpp):
+    std::string jacobian = "perturbation"; // perturbation | full-perturbation | analytical
+    std::string subincrement = "fixed";    // fixed | adaptive
+    double gap_increment = 3.0e-6;         // typical |dg_T| per update (m)
+    double shear_band_thickness = 0.003;   // d_s0 (m)
 };
 
-// The benchmark's JSON object. Throws std::invalid_argument for bad options.
+// The benchmark's JSON object (an interface formulation runs interface_kernel_bench.hpp's).
+// Throws std::invalid_argument for bad options.
 nlohmann::ordered_json run_kernel_bench(const KernelBenchOptions& options);
+
+// The continuum model of --model with --parameters and --roughness, prepared. Throws
+// std::invalid_argument for an unknown model or set.
+MaterialChoice kernel_bench_material(const KernelBenchOptions& options);
 
 } // namespace ifsim::io

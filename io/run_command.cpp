@@ -11,10 +11,13 @@
 #include "io/element_test_scene.hpp"
 #include "io/exit_codes.hpp"
 #include "io/history_writer.hpp"
+#include "io/interface_test_run.hpp"
+#include "io/interface_test_scene.hpp"
 #include "io/scene_error.hpp"
 #include "io/scene_toml.hpp"
 #include "io/summary_writer.hpp"
 #include "io/thread_limit.hpp"
+#include "io/toml_describe.hpp"
 #include "kernels/simd.hpp"
 
 namespace ifsim::io {
@@ -93,6 +96,37 @@ int write_summary_or_report(const fs::path& dir, const RunSummary& summary, int 
     return code;
 }
 
+// A scene read for its kind.
+struct Scene {
+    std::string kind;
+    ElementTestScene element;
+    InterfaceTestScene interface;
+};
+
+// Runs the scene's kind and fills the summary with its results. Throws std::runtime_error when
+// history.csv cannot be written at all.
+void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double parse_s,
+              RunSummary& summary, std::string& label, long& steps) {
+    const ProgressMode progress = opt.quiet ? ProgressMode::never : opt.progress;
+    if (scene.kind == "interface-test") {
+        InterfaceTestScene& s = scene.interface;
+        s.spec.contact.simd = !opt.scalar;
+        s.spec.sample_update.simd = !opt.scalar;
+        const InterfaceRunOutcome run = run_interface_test_scene(s, dir, progress);
+        add_interface_test_results(summary, s, run, parse_s);
+        label = s.coulomb() ? s.formulation
+                            : fmt::format("{} {}", s.formulation, s.interface_material.model);
+        steps = s.total_steps();
+        return;
+    }
+    ElementTestScene& s = scene.element;
+    s.settings.update.simd = !opt.scalar;
+    const ElementRunOutcome run = run_element_test_scene(s, dir, progress);
+    add_element_test_results(summary, s, run, parse_s);
+    label = s.material.model;
+    steps = s.total_steps();
+}
+
 } // namespace
 
 int run_command(const RunOptions& opt) {
@@ -118,22 +152,25 @@ int run_command(const RunOptions& opt) {
     summary.details["lanes"] = opt.scalar ? std::size_t{1} : simd::lanes;
 
     // Parse: the scene, the overrides, the kind's schema.
-    ElementTestScene scene;
+    Scene scene;
     try {
         toml::table table = load_scene_table(opt.scene);
         for (const auto& set : opt.sets) {
             apply_override(table, set, opt.scene);
         }
-        const std::string kind = scene_kind(table, opt.scene);
-        summary.kind = kind;
-        if (kind != "element-test") {
+        scene.kind = scene_kind(table, opt.scene);
+        summary.kind = scene.kind;
+        if (scene.kind == "element-test") {
+            scene.element = read_element_test_scene(table, opt.scene);
+        } else if (scene.kind == "interface-test") {
+            scene.interface = read_interface_test_scene(table, opt.scene);
+        } else {
             throw SceneError(opt.scene, "kind",
                              fmt::format("kind \"{}\" is not supported by this build; expected "
-                                         "\"element-test\"",
-                                         kind),
-                             0);
+                                         "\"element-test\" or \"interface-test\"",
+                                         scene.kind),
+                             line_in_file(*table.get("kind")));
         }
-        scene = read_element_test_scene(table, opt.scene);
     } catch (const SceneError& e) {
         std::string message = e.what();
         if (const auto set = override_behind(e.key(), opt.sets)) {
@@ -147,31 +184,29 @@ int run_command(const RunOptions& opt) {
         return write_summary_or_report(dir, summary, exit_code::bad_input);
     }
     const double parse_s = since(t_start);
-    scene.settings.update.simd = !opt.scalar;
 
-    ElementRunOutcome run;
+    std::string label;
+    long steps = 0;
     try {
-        run = run_element_test_scene(scene, dir, opt.quiet ? ProgressMode::never : opt.progress);
+        run_kind(scene, opt, dir, parse_s, summary, label, steps);
     } catch (const std::exception& e) {
         fmt::print(stderr, "ifsim: error: {}\n", e.what());
+        summary.ok = false;
         summary.reason = e.what();
         summary.wall_s = since(t_start);
         write_summary_or_report(dir, summary, exit_code::io_error);
         return exit_code::io_error;
     }
-
-    const ElementTestResult& r = run.result;
-    add_element_test_results(summary, scene, run, parse_s);
     summary.wall_s = since(t_start);
 
-    if (!r.ok) {
-        fmt::print(stderr, "ifsim: run failed: {}\n", r.reason);
+    if (!summary.ok) {
+        fmt::print(stderr, "ifsim: run failed: {}\n", summary.reason);
         return write_summary_or_report(dir, summary, exit_code::run_failed);
     }
     const int code = write_summary_or_report(dir, summary, exit_code::ok);
     if (code == exit_code::ok && !opt.quiet) {
-        fmt::print("ifsim: {} ({}) ok: {} steps in {:.3f} s, results in {}\n", opt.scene,
-                   scene.material.model, scene.total_steps(), summary.wall_s, opt.out);
+        fmt::print("ifsim: {} ({}) ok: {} steps in {:.3f} s, results in {}\n", opt.scene, label,
+                   steps, summary.wall_s, opt.out);
     }
     return code;
 }

@@ -62,11 +62,12 @@ toml::table parse_override_value(std::string_view text, const std::string& file,
     } catch (const toml::parse_error&) {
         // fall through: maybe a bare word
     }
-    // A bare word (letters, digits, - _ + .) that is no TOML value is a string: model=sanisand.
+    // A bare word (letters, digits, - _ + . /) that is no TOML value is a string:
+    // model=sanisand, normal.stiffness_unit=kPa/mm.
     const bool bare =
         !text.empty() && text.find_first_not_of("abcdefghijklmnopqrstuvwxyz"
                                                 "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                                "0123456789-_+.") == std::string_view::npos;
+                                                "0123456789-_+./") == std::string_view::npos;
     if (!bare) {
         throw SceneError(file, key,
                          fmt::format("expected a TOML value after '=' in --set (number, string, "

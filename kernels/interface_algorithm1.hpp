@@ -29,6 +29,7 @@ struct SubincrementResult {
     StateVec<T, NS> y;
     std::array<T, 3> x{T(0.0), T(0.0), T(0.0)}; // converged normal strain increments
     simd::mask_t<T> converged{};
+    simd::mask_t<T> model_failed{};
     T residual = T(0.0);
 };
 
@@ -59,6 +60,7 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
     SubincrementResult<T, NS> out;
     out.y = y0;
     out.converged = !active;
+    out.model_failed = Mask(false);
     std::array<T, 3> x = x_guess;
     const SubstepControl<T> adaptive_ctl{};
     Mask failed(false); // lanes whose model update or Newton matrix failed
@@ -94,6 +96,7 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
         out.residual = simd::select(now, r, out.residual);
         out.converged = out.converged || now;
         failed = failed || (working && !model_ok);
+        out.model_failed = out.model_failed || (working && !model_ok);
         const Mask iterate = working && !now && model_ok;
         polish_left = simd::select(iterate && met, polish_left - 1.0, polish_left);
         if (simd::none(iterate) || it == s.max_newton_iterations + s.polish_iterations) {
@@ -164,8 +167,11 @@ void interface_update(const typename M::Params& mp, const InterfaceSettings& s,
                            simd::isfinite(in.dg2) && simd::isfinite(in.s_p1) &&
                            simd::isfinite(in.s_p2) && state_finite<T, NS>(st.y);
     // Eq. 26: band thickness following the interface normal strain.
-    const T d_s = s.shear_band_thickness * (1.0 + st.eps_n);
-    const Mask band_ok = d_s > s.min_band_fraction * s.shear_band_thickness;
+    const T d_s_floor = T(s.min_band_fraction * s.shear_band_thickness);
+    const T d_s_eq26 = s.shear_band_thickness * (1.0 + st.eps_n);
+    const Mask below = !(d_s_eq26 > d_s_floor);
+    const Mask band_ok = s.clamp_band ? Mask(true) : !below;
+    const T d_s = simd::select(below, d_s_floor, d_s_eq26);
     // Contact open (no compression to carry): the point keeps its state and transmits nothing.
     const Mask open = in.t_N > -s.model.min_pressure;
     const Mask run = finite_in && band_ok && !open;
@@ -210,6 +216,13 @@ void interface_update(const typename M::Params& mp, const InterfaceSettings& s,
     std::array<T, 3> x_rate{T(0.0), T(0.0), T(0.0)}; // normal strain increment per unit fraction
     Mask active = run;
     Mask failed = !finite_in || !band_ok;
+    T cause = simd::select(!finite_in, T(interface_failure::non_finite_input),
+                           simd::select(!band_ok, T(interface_failure::band_collapse), T(0.0)));
+    // Records the first reason a lane fails.
+    auto fail = [&](const Mask& m, double code) {
+        cause = simd::select(m && !failed, T(code), cause);
+        failed = failed || m;
+    };
     long count = 0;
     while (simd::any(active)) {
         const T hl = simd::select(active, simd::min(h, T(1.0) - t), T(0.0));
@@ -254,10 +267,12 @@ void interface_update(const typename M::Params& mp, const InterfaceSettings& s,
             next_h = simd::select(forced, h, simd::select(accept, hl * grow, hl * shrink));
             // A sub-increment that cannot be made small enough ends the lane as failed.
             const Mask too_small = active && !accept && ((hl * total < 1.0e-12) || forced);
-            failed = failed || too_small;
+            fail(too_small && full.model_failed, interface_failure::model);
+            fail(too_small, interface_failure::newton);
             active = active && !too_small;
         } else {
-            failed = failed || (active && !full.converged);
+            fail(active && full.model_failed, interface_failure::model);
+            fail(active && !full.converged, interface_failure::newton);
             active = active && full.converged;
         }
         // Algorithm 1 lines 11-13: save strain, state and stress of the converged sub-increment.
@@ -284,7 +299,7 @@ void interface_update(const typename M::Params& mp, const InterfaceSettings& s,
         h = adaptive ? simd::select(active, next_h, h) : h;
         active = active && ((T(1.0) - t) > 1.0e-12);
         if (++count > s.max_subincrements) {
-            failed = failed || active;
+            fail(active, interface_failure::subincrement_limit);
             break;
         }
     }
@@ -296,6 +311,8 @@ void interface_update(const typename M::Params& mp, const InterfaceSettings& s,
     // Failed lanes keep their start state; open lanes keep theirs and carry no traction.
     stats.status = simd::select(failed, T(lane_status::failed), T(lane_status::ok));
     stats.open = simd::select(open && finite_in, T(1.0), T(0.0));
+    stats.cause = simd::select(failed, cause, T(0.0));
+    stats.band_clamped = simd::select(run && below, T(1.0), T(0.0));
     const Mask keep = failed || !run;
     st.y = select_state<T, NS>(keep, st.y, cur.y);
     st.eps_n = simd::select(keep, st.eps_n, cur.eps_n);

@@ -42,8 +42,40 @@ struct InterfaceSettings {
     // Eq. 26 lets d_s = d_s0 (1 + eps_N) shrink towards zero in long compaction. Below this
     // fraction of d_s0 the point stops with status failed (a defined stop, never a NaN).
     double min_band_fraction = 0.05;
+    // true: instead of stopping, hold d_s at min_band_fraction * d_s0 and go on (counted in
+    // InterfaceStats::band_clamped). The results past that point rest on an assumed thickness.
+    bool clamp_band = false;
     IntegrationSettings model; // the continuum model's own integration settings
 };
+
+// Codes of InterfaceStats::cause.
+namespace interface_failure {
+inline constexpr double none = 0.0;
+inline constexpr double band_collapse = 1.0; // d_s below min_band_fraction * d_s0 (Eq. 26)
+inline constexpr double non_finite_input = 2.0;
+inline constexpr double newton = 3.0; // Eqs. 18-20 not met in max_newton_iterations
+inline constexpr double model = 4.0;  // the constitutive update failed
+inline constexpr double subincrement_limit = 5.0;
+
+inline const char* describe(double cause) {
+    if (cause == band_collapse) {
+        return "shear band collapsed (d_s of Eq. 26 below its floor)";
+    }
+    if (cause == non_finite_input) {
+        return "non-finite input";
+    }
+    if (cause == newton) {
+        return "Newton on the interface normal strains did not converge (Eqs. 18-20)";
+    }
+    if (cause == model) {
+        return "the constitutive update of the interface model failed";
+    }
+    if (cause == subincrement_limit) {
+        return "too many sub-increments";
+    }
+    return "unknown";
+}
+} // namespace interface_failure
 
 // Per-lane interface state: the model state in local axes (stress = interface stress of Eq. 17),
 // the interface strains, and the last accepted adaptive sub-increment (fraction of the shear
@@ -76,6 +108,8 @@ struct InterfaceStats {
     T model_substeps = T(0.0); // substeps of the model's own integration
     T residual = T(0.0);       // final relative residual of Eqs. 18-20 (worst sub-increment)
     T open = T(0.0);           // 1: contact open (t_N >= 0), no traction, state kept
+    T cause = T(0.0);          // why a lane failed: see interface_failure
+    T band_clamped = T(0.0);   // 1: d_s held at its floor (clamp_band)
 };
 
 } // namespace ifsim

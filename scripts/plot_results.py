@@ -1,13 +1,25 @@
 #!/usr/bin/env python3
-"""Plots the results of ifsim runs: one PNG per run directory.
+"""Plots the results of ifsim runs: one PNG per run directory, or one comparison of runs.
 
 Usage: plot_results.py DIR [DIR ...]
+       plot_results.py --compare OUT.png [--height H] DIR1 DIR2 [DIR ...]
 
 Each DIR is a run's output directory (history.csv, summary.json) or a directory whose
 subdirectories are run directories (e.g. results/). The figure goes to DIR/overview.png.
 Plotters are chosen by the run's kind (summary.json "kind"); add a function to PLOTTERS for
-a new kind. Runs with Debian's /usr/bin/python3 (python3-matplotlib); without matplotlib it
-says so and exits 0, the data stay in the CSV files.
+a new kind.
+  element-test    stress path, stress-strain, compression, volume change
+  interface-test  paper Fig. 6 style: t_t1, s_p1, s_p2, sample_s22, sample_s33 and u_n over
+                  the plate displacement u_t1 (mm); for cyclic runs also DIR/cycles.png in the
+                  style of Fig. 7: t_t1 and u_n over u_t1 for cycle N = 1 and N = 11 (or the
+                  last complete cycle). A cycle starts where u_t1 passes its start value
+                  moving in the direction of stage 1; the stages give the directions.
+--compare overlays t_t1, s_p1 and sample_s22 over u_t1 of several runs in OUT.png (novel vs
+Stutz, paper Appendix C Fig. C1). An element-test run among them (the sample sheared alone)
+is drawn as the test without interface: u_t1 = 2 eps12 H (H = --height, default 0.02 m),
+t_t1 = s12, s_p1 = sample_s22 = s22.
+Runs with Debian's /usr/bin/python3 (python3-matplotlib); without matplotlib it says so and
+exits 0, the data stay in the CSV files.
 """
 
 import csv
@@ -132,11 +144,174 @@ def plot_element_test(plt, run_dir, h, summary):
     return out
 
 
-PLOTTERS = {"element-test": plot_element_test}
+def mm(values):
+    return [1000.0 * v for v in values]
+
+
+def stage_directions(h, key="u_t1"):
+    """Sign (+1, -1 or 0) of the change of `key` over each stage, by stage number."""
+    u, stage = h[key], h["stage"]
+    direction, start = {}, 0
+    for i in range(1, len(stage) + 1):
+        if i == len(stage) or stage[i] != stage[i - 1]:
+            s = int(stage[i - 1])
+            if s > 0:
+                change = u[i - 1] - u[max(start - 1, 0)]
+                direction[s] = (change > 0) - (change < 0)
+            start = i
+    return direction
+
+
+def cycle_numbers(h):
+    """Cycle number of every row: cycle 1 starts at step 0; a new cycle starts where u_t1
+    passes its start value again moving in the direction of stage 1."""
+    u, stage = h["u_t1"], h["stage"]
+    direction = stage_directions(h)
+    d0 = direction.get(1, 0)
+    amplitude = max((abs(x - u[0]) for x in u), default=0.0)
+    tol = 1e-9 * amplitude
+    numbers, n = [1], 1
+    for i in range(1, len(u)):
+        if d0 and direction.get(int(stage[i]), 0) == d0:
+            before, after = (u[i - 1] - u[0]) * d0, (u[i] - u[0]) * d0
+            if before < -tol and after >= -tol:
+                n += 1
+        numbers.append(n)
+    return numbers
+
+
+def is_cyclic(h):
+    directions = [d for _, d in sorted(stage_directions(h).items()) if d != 0]
+    return any(a != b for a, b in zip(directions, directions[1:]))
+
+
+def cycle_rows(numbers, n):
+    """Row indices of cycle n, closed by the first row of the next cycle."""
+    rows = [i for i, c in enumerate(numbers) if c == n]
+    if rows and rows[-1] + 1 < len(numbers):
+        rows.append(rows[-1] + 1)
+    return rows
+
+
+def complete_cycles(numbers):
+    """Cycles that came back to the start value: the current (last) cycle number is open, or
+    was just opened by the run's last row where it returned to the start."""
+    return numbers[-1] - 1 if numbers else 0
+
+
+def interface_axes(ax, xlabel, ylabel, title):
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=10)
+    ax.ticklabel_format(useOffset=False)
+    ax.grid(True, alpha=0.3)
+
+
+U_LABEL = "plate displacement $u_{t1}$ [mm]"
+
+
+def plot_interface_cycles(plt, run_dir, h, summary, wanted=(1, 11)):
+    numbers = cycle_numbers(h)
+    done = complete_cycles(numbers)
+    if done < 1:
+        return None
+    cycles = sorted({min(n, done) for n in wanted})
+    fig, ax = plt.subplots(1, 2, figsize=(11, 4.5))
+    for n in cycles:
+        rows = cycle_rows(numbers, n)
+        u = [1000.0 * h["u_t1"][i] for i in rows]
+        ax[0].plot(u, [h["t_t1"][i] for i in rows], lw=1.2, label=f"N = {n}")
+        ax[1].plot(u, [1000.0 * h["u_n"][i] for i in rows], lw=1.2, label=f"N = {n}")
+    interface_axes(ax[0], U_LABEL, "shear stress $t_{t1}$ [kPa]", "shear stress")
+    interface_axes(ax[1], U_LABEL, "normal displacement $u_n$ [mm] (dilation +)",
+                   "normal displacement")
+    for a in ax:
+        a.legend(fontsize=8)
+    fig.suptitle(f"{run_title(run_dir, summary)} | cycles ({done} complete)")
+    fig.tight_layout()
+    out = os.path.join(run_dir, "cycles.png")
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    return out
+
+
+def plot_interface_test(plt, run_dir, h, summary):
+    u = mm(h["u_t1"])
+    panels = [
+        ("t_t1", "shear stress $t_{t1}$ [kPa]", "(a) interface shear stress"),
+        ("s_p1", "$\\sigma_{p1}$ [kPa]", "(b) interface normal stress $\\sigma_{p1}$"),
+        ("s_p2", "$\\sigma_{p2}$ [kPa]", "(c) interface normal stress $\\sigma_{p2}$"),
+        ("sample_s22", "$\\sigma_{22}$ [kPa]", "(d) sample normal stress $\\sigma_{22}$"),
+        ("sample_s33", "$\\sigma_{33}$ [kPa]", "(e) sample normal stress $\\sigma_{33}$"),
+        ("u_n", "normal displacement $u_n$ [mm] (dilation +)", "(f) normal displacement"),
+    ]
+    fig, ax = plt.subplots(2, 3, figsize=(14, 8))
+    stages = {int(s) for s in h["stage"] if s > 0}
+    for axis, (key, ylabel, title) in zip([a for row in ax for a in row], panels):
+        y = mm(h[key]) if key == "u_n" else h[key]
+        if len(stages) <= 4:
+            for stage, xs, ys in by_stage(u, y, h["stage"]):
+                axis.plot(xs, ys, lw=1.2, label=f"stage {stage}")
+        else:  # cyclic runs: one curve
+            axis.plot(u, y, lw=0.8)
+        interface_axes(axis, U_LABEL, ylabel, title)
+    if 1 < len(stages) <= 4:
+        ax[0][0].legend(fontsize=8)
+    details = [summary.get("formulation"), summary.get("normal_control")]
+    fig.suptitle(" | ".join([run_title(run_dir, summary)] + [d for d in details if d]))
+    fig.tight_layout()
+    out = os.path.join(run_dir, FIGURE)
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    if is_cyclic(h):
+        cycles = plot_interface_cycles(plt, run_dir, h, summary)
+        if cycles:
+            out += f", {cycles}"
+    return out
+
+
+PLOTTERS = {"element-test": plot_element_test, "interface-test": plot_interface_test}
 
 
 def guess_kind(h):
+    if "u_t1" in h and "t_t1" in h:
+        return "interface-test"
     return "element-test" if "eps11" in h and "s11" in h else None
+
+
+def comparison_curves(run_dir, height):
+    """u_t1 (mm), t_t1, s_p1, sample_s22 and a label of one run for --compare."""
+    h = read_history(run_dir)
+    summary = read_summary(run_dir)
+    kind = summary.get("kind") or guess_kind(h)
+    label = run_title(run_dir, summary)
+    if kind == "interface-test":
+        form = summary.get("formulation", "")
+        if form == "stutz" and summary.get("stutz_initial_stress"):
+            form += f" ({summary['stutz_initial_stress']})"
+        label = f"{label} [{form}]" if form else label
+        return label, mm(h["u_t1"]), h["t_t1"], h["s_p1"], h["sample_s22"]
+    if kind == "element-test":
+        u = [2.0 * e * height * 1000.0 for e in h["eps12"]]
+        return f"{label} [no interface]", u, h["s12"], h["s22"], h["s22"]
+    raise ValueError(f"kind {kind!r} cannot be compared")
+
+
+def compare(plt, out, dirs, height):
+    fig, ax = plt.subplots(1, 3, figsize=(15, 4.8))
+    for run_dir in dirs:
+        label, u, tau, sp1, s22 = comparison_curves(run_dir, height)
+        ax[0].plot(u, tau, lw=1.2, label=label)
+        ax[1].plot(u, sp1, lw=1.2, label=label)
+        ax[2].plot(u, s22, lw=1.2, label=label)
+    interface_axes(ax[0], U_LABEL, "shear stress $t_{t1}$ [kPa]", "(a) interface shear stress")
+    interface_axes(ax[1], U_LABEL, "$\\sigma_{p1}$ [kPa]", "(b) interface normal stress $\\sigma_{p1}$")
+    interface_axes(ax[2], U_LABEL, "$\\sigma_{22}$ [kPa]", "(c) sample normal stress $\\sigma_{22}$")
+    ax[0].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    return out
 
 
 def run_dirs(paths):
@@ -158,6 +333,34 @@ def run_dirs(paths):
     return found, empty
 
 
+def compare_main(plt, args):
+    """--compare OUT.png [--height H] DIR1 DIR2 ..."""
+    height = 0.02
+    if "--height" in args:
+        i = args.index("--height")
+        try:
+            height = float(args[i + 1])
+        except (IndexError, ValueError):
+            print("plot_results: --height expects a sample height in m", file=sys.stderr)
+            return 2
+        args = args[:i] + args[i + 2:]
+    if len(args) < 2 or not args[0].endswith(".png"):
+        print("plot_results: usage: --compare OUT.png [--height H] DIR1 DIR2 ...",
+              file=sys.stderr)
+        return 2
+    out, dirs = args[0], args[1:]
+    missing = [d for d in dirs if not os.path.exists(os.path.join(d, HISTORY))]
+    if missing:
+        print(f"plot_results: no {HISTORY} in {', '.join(missing)}", file=sys.stderr)
+        return 1
+    try:
+        print(f"plot_results: {compare(plt, out, dirs, height)}")
+    except (OSError, ValueError, KeyError, StopIteration) as err:
+        print(f"plot_results: cannot compare: {err}", file=sys.stderr)
+        return 1
+    return 0
+
+
 def main(argv):
     if len(argv) < 2 or argv[1] in ("-h", "--help"):
         print(__doc__.strip())
@@ -170,6 +373,8 @@ def main(argv):
         print("plot_results: matplotlib is not available for this Python "
               f"({sys.executable}); no plots drawn (try /usr/bin/python3)")
         return 0
+    if argv[1] == "--compare":
+        return compare_main(plt, argv[2:])
     found, empty = run_dirs(argv[1:])
     status = 1 if empty else 0
     for run_dir in found:

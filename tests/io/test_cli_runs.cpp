@@ -157,14 +157,14 @@ TEST(CliRun, BadOverrideIsReportedWithTheAssignment) {
 }
 
 TEST(CliRun, UnsupportedKindIsAClearError) {
-    const std::string scene = test::write_scene("kind = \"interface-test\"\n");
+    const std::string scene = test::write_scene("kind = \"boundary-value\"\n");
     const fs::path out = test::fresh_dir("cli-kind");
     const Captured r = run_captured({"run", scene, "--out", out.string()});
     EXPECT_EQ(r.code, exit_code::bad_input);
-    EXPECT_NE(r.err.find("kind: kind \"interface-test\" is not supported by this build"),
+    EXPECT_NE(r.err.find("kind: kind \"boundary-value\" is not supported by this build"),
               std::string::npos)
         << r.err;
-    EXPECT_EQ(summary(out)["kind"], "interface-test");
+    EXPECT_EQ(summary(out)["kind"], "boundary-value");
     EXPECT_EQ(summary(out)["status"], "failed");
 }
 
@@ -240,12 +240,11 @@ TEST(CliKernelBench, PrintsOneJsonObjectWithValidStates) {
     }
 }
 
-TEST(CliKernelBench, RejectsInterfaceFormulationsAndBadOptions) {
+TEST(CliKernelBench, RejectsUnknownFormulationsAndBadOptions) {
     const Captured f = run_captured(
-        {"kernel-bench", "--model", "hypoplasticity", "--formulation", "novel", "--points", "8"});
+        {"kernel-bench", "--model", "hypoplasticity", "--formulation", "mohr", "--points", "8"});
     EXPECT_EQ(f.code, exit_code::bad_input);
-    EXPECT_NE(f.err.find("interface formulations are not available yet"), std::string::npos)
-        << f.err;
+    EXPECT_NE(f.err.find("expected none, novel, stutz or coulomb"), std::string::npos) << f.err;
     EXPECT_EQ(run_captured({"kernel-bench", "--model", "cam-clay", "--points", "8"}).code,
               exit_code::bad_input);
     EXPECT_EQ(run_captured({"kernel-bench", "--model", "sanisand", "--points", "0"}).code,

@@ -1,0 +1,47 @@
+#pragma once
+// Direct sparse solve of the reduced Newton system with SuiteSparse: UMFPACK (default) or KLU.
+// The symbolic analysis (fill-reducing ordering) is computed once per matrix pattern and
+// reused while the pattern id stays the same; the numeric factorisation runs every call of
+// factorise() (the tangent changes every Newton iteration).
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include <Eigen/SparseCore>
+
+namespace ifsim::fem {
+
+enum class LinearSolverKind { umfpack, klu };
+
+struct LinearSolverCounters {
+    long symbolic_analyses = 0;
+    long numeric_factorisations = 0;
+    long solves = 0;
+};
+
+class LinearSolver {
+public:
+    explicit LinearSolver(LinearSolverKind kind = LinearSolverKind::umfpack);
+    ~LinearSolver();
+    LinearSolver(const LinearSolver&) = delete;
+    LinearSolver& operator=(const LinearSolver&) = delete;
+
+    // Factorises A (square, compressed, sorted). Returns false with a reason when the matrix is
+    // singular or the library fails; the solver then needs a new factorise() before solve().
+    bool factorise(const Eigen::SparseMatrix<double>& A, std::uint64_t pattern_id,
+                   std::string& error);
+    // x = A^-1 b with the last factorisation (x and b of length n; may not alias).
+    bool solve(const double* b, double* x, std::string& error);
+
+    LinearSolverKind kind() const { return kind_; }
+    const LinearSolverCounters& counters() const { return counters_; }
+
+private:
+    struct Impl;
+    LinearSolverKind kind_;
+    std::unique_ptr<Impl> impl_;
+    LinearSolverCounters counters_;
+};
+
+} // namespace ifsim::fem

@@ -1,0 +1,62 @@
+#pragma once
+// Inputs of the static solver besides the mesh and the stages: the material of each element
+// set, its initial state, and the numerical settings with their documented defaults.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/batched_update.hpp"
+#include "engine/material_choice.hpp"
+#include "fem/element_geometry.hpp"
+#include "fem/linear_solver.hpp"
+#include "fem/set_material.hpp"
+
+namespace ifsim::fem {
+
+// Initial geostatic stress of an element set (applied once, before the first stage):
+// sigma_v = -(surcharge + unit_weight * (surface - z)) at each integration point (z the
+// vertical coordinate), sigma_h = k0 * sigma_v, no shear. unit_weight 0 gives a uniform
+// sigma_v = -surcharge.
+struct K0Stress {
+    double surface = 0.0;     // vertical coordinate of the ground surface, m
+    double unit_weight = 0.0; // gamma, kN/m^3
+    double surcharge = 0.0;   // kPa, magnitude of sigma_v at the surface
+    double k0 = 0.5;
+};
+
+struct ElementSetMaterial {
+    std::string element_set;
+    MaterialChoice material;
+    std::vector<double> initial_state; // the model's flat state (kernels/model_api.hpp)
+    double density = 0.0;              // t/m^3: body force rho g under gravity
+    std::optional<K0Stress> k0;        // absent: the initial state's stress everywhere
+    // Reference shear modulus of the hourglass control (reduced integration), kPa; 0 takes it
+    // from the model's rate stiffness at each element's initial state.
+    double hourglass_shear_modulus = 0.0;
+};
+
+struct SolverSettings {
+    Integration integration = Integration::full;
+    // Hourglass stiffness k = c * G_ref * V * sum(bbar^2) per hourglass mode and direction
+    // (Flanagan-Belytschko stiffness form; see docs/fem.md for the calibration of c).
+    double hourglass_coefficient = 0.05;
+    TangentSettings tangent;
+    UpdateOptions update;
+    LinearSolverKind linear_solver = LinearSolverKind::umfpack;
+    // Converged when ||R|| <= residual_tolerance * F_ref and the last correction
+    // ||du|| <= displacement_tolerance * ||Delta u||, or when ||R|| <= 1e-2 residual_tolerance
+    // * F_ref alone (F_ref = max(||f_ext||, ||f_int|| over all DOFs incl. reactions)).
+    double residual_tolerance = 1.0e-8;
+    double displacement_tolerance = 1.0e-6;
+    double reference_force_floor = 1.0e-12; // kN: keeps F_ref > 0 in an unloaded body
+    int max_iterations = 20;
+    // First guess of the free DOFs: the previous converged increment of the stage scaled to the
+    // new increment's length (false: zero), the prescribed DOFs at their new values.
+    bool extrapolate = true;
+    int max_cuts = 6;                // halvings of one nominal increment before failing
+    std::size_t element_grain = 64; // elements per task in the element loops
+};
+
+} // namespace ifsim::fem

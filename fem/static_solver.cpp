@@ -1,0 +1,599 @@
+#include "fem/static_solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
+#include "fem/element_kernels.hpp"
+#include "fem/loads.hpp"
+
+namespace ifsim::fem {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Adds the time since construction to a phase timer.
+class PhaseTimer {
+public:
+    explicit PhaseTimer(double& sink) : sink_(sink), t0_(Clock::now()) {}
+    ~PhaseTimer() { sink_ += std::chrono::duration<double>(Clock::now() - t0_).count(); }
+    PhaseTimer(const PhaseTimer&) = delete;
+    PhaseTimer& operator=(const PhaseTimer&) = delete;
+
+private:
+    double& sink_;
+    Clock::time_point t0_;
+};
+
+double norm2(std::span<const double> v) {
+    double s = 0.0;
+    for (double x : v) {
+        s += x * x;
+    }
+    return std::sqrt(s);
+}
+
+// Fixed-size chunks (simple_partitioner): the split never depends on the thread count.
+template <class F>
+void parallel_chunks(std::size_t n, std::size_t grain, F&& body) {
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, n, std::max<std::size_t>(grain, 1)),
+        [&](const tbb::blocked_range<std::size_t>& r) {
+            for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                body(i);
+            }
+        },
+        tbb::simple_partitioner());
+}
+
+} // namespace
+
+struct StaticSolver::SetData {
+    ElementSetMaterial spec;
+    std::unique_ptr<SetMaterial> material;
+    std::vector<int> elements;
+    std::vector<double> tangent;      // point * nc * nc
+    std::array<double*, 6> deps_cols{}; // stable: the increment columns are never swapped
+};
+
+StaticSolver::StaticSolver(Mesh mesh, std::vector<ElementSetMaterial> materials,
+                           SolverSettings settings)
+    : mesh_(std::move(mesh)), settings_(std::move(settings)), linear_(settings_.linear_solver) {
+    mesh_.validate();
+    geom_ = build_geometry(mesh_, settings_.integration);
+    const int ne = mesh_.n_elements();
+    const int D = mesh_.dim();
+    const int nc = D == 2 ? 3 : 6;
+    set_of_element_.assign(static_cast<std::size_t>(ne), -1);
+    local_of_element_.assign(static_cast<std::size_t>(ne), -1);
+    for (auto& spec : materials) {
+        auto s = std::make_unique<SetData>();
+        s->elements = mesh_.element_set(spec.element_set);
+        const int id = static_cast<int>(sets_.size());
+        for (std::size_t l = 0; l < s->elements.size(); ++l) {
+            const auto e = static_cast<std::size_t>(s->elements[l]);
+            if (set_of_element_[e] >= 0) {
+                throw std::invalid_argument(fmt::format(
+                    "element {} is in two material sets ('{}' and '{}')", e,
+                    sets_[static_cast<std::size_t>(set_of_element_[e])]->spec.element_set,
+                    spec.element_set));
+            }
+            set_of_element_[e] = id;
+            local_of_element_[e] = static_cast<int>(l);
+        }
+        const std::size_t points = s->elements.size() * static_cast<std::size_t>(geom_.nip);
+        s->material = make_set_material(spec.material, points);
+        if (static_cast<int>(spec.initial_state.size()) != s->material->n_state()) {
+            throw std::invalid_argument(fmt::format(
+                "element set '{}': the initial state of model {} needs {} values, got {}",
+                spec.element_set, s->material->model_name(), s->material->n_state(),
+                spec.initial_state.size()));
+        }
+        for (std::size_t i = 0; i < points; ++i) {
+            s->material->set_state(i, spec.initial_state);
+        }
+        s->tangent.assign(points * static_cast<std::size_t>(nc * nc), 0.0);
+        for (int j = 0; j < 6; ++j) {
+            s->deps_cols[static_cast<std::size_t>(j)] = s->material->deps(j);
+        }
+        s->spec = std::move(spec);
+        sets_.push_back(std::move(s));
+    }
+    for (int e = 0; e < ne; ++e) {
+        if (set_of_element_[static_cast<std::size_t>(e)] < 0) {
+            throw std::invalid_argument(
+                fmt::format("element {} has no material (it is in none of the material sets)", e));
+        }
+    }
+    const auto n_dofs = static_cast<std::size_t>(mesh_.n_nodes() * D);
+    u_.assign(n_dofs, 0.0);
+    du_.assign(n_dofs, 0.0);
+    f_int_.assign(n_dofs, 0.0);
+    f_int_committed_.assign(n_dofs, 0.0);
+    f_ext_.assign(n_dofs, 0.0);
+    f_ext_committed_.assign(n_dofs, 0.0);
+    apply_k0();
+    if (settings_.integration == Integration::reduced) {
+        hourglass_stiffness();
+    }
+}
+
+StaticSolver::~StaticSolver() = default;
+
+const SolverCounters& StaticSolver::counters() const {
+    counters_.linear = linear_.counters();
+    return counters_;
+}
+
+std::vector<double> StaticSolver::state(int element, int point) const {
+    const auto e = static_cast<std::size_t>(element);
+    const SetData& s = *sets_[static_cast<std::size_t>(set_of_element_.at(e))];
+    return s.material->state(static_cast<std::size_t>(local_of_element_[e] * geom_.nip + point));
+}
+
+std::vector<double> StaticSolver::trial_state(int element, int point) const {
+    const auto e = static_cast<std::size_t>(element);
+    const SetData& s = *sets_[static_cast<std::size_t>(set_of_element_.at(e))];
+    return s.material->trial_state(
+        static_cast<std::size_t>(local_of_element_[e] * geom_.nip + point));
+}
+
+void StaticSolver::apply_k0() {
+    const int D = mesh_.dim();
+    for (auto& s : sets_) {
+        if (!s->spec.k0) {
+            continue;
+        }
+        PhaseTimer timer(timers_.k0);
+        const K0Stress& k = *s->spec.k0;
+        for (std::size_t l = 0; l < s->elements.size(); ++l) {
+            const int e = s->elements[l];
+            for (int q = 0; q < geom_.nip; ++q) {
+                const double z = geom_.ip_coordinates[static_cast<std::size_t>(
+                    (e * geom_.nip + q) * D + D - 1)];
+                const double sv = -(k.surcharge + k.unit_weight * (k.surface - z));
+                const double sh = k.k0 * sv;
+                const Sym<double> stress = D == 2 ? Sym<double>{sh, sv, sh, 0.0, 0.0, 0.0}
+                                                  : Sym<double>{sh, sh, sv, 0.0, 0.0, 0.0};
+                s->material->set_stress(l * static_cast<std::size_t>(geom_.nip) +
+                                            static_cast<std::size_t>(q),
+                                        stress);
+                ++counters_.k0_points;
+            }
+        }
+    }
+}
+
+void StaticSolver::hourglass_stiffness() {
+    hourglass_k_.assign(static_cast<std::size_t>(mesh_.n_elements()), 0.0);
+    for (auto& s : sets_) {
+        for (std::size_t l = 0; l < s->elements.size(); ++l) {
+            const auto e = static_cast<std::size_t>(s->elements[l]);
+            const double G = s->spec.hourglass_shear_modulus > 0.0
+                                 ? s->spec.hourglass_shear_modulus
+                                 : s->material->shear_modulus(l, settings_.update);
+            hourglass_k_[e] = settings_.hourglass_coefficient * G * geom_.hourglass_scale[e];
+        }
+    }
+}
+
+void StaticSolver::begin_stage(const Stage& stage) {
+    stage_ = &stage;
+    ++stage_count_;
+    DofMap next = build_dof_map(mesh_, stage);
+    if (!system_ || next.equation != dofs_.equation) {
+        system_ = std::make_unique<SparseSystem>(mesh_, next);
+        ++counters_.patterns_built;
+    }
+    dofs_ = std::move(next);
+    u_stage_start_ = u_;
+    dt_last_ = 0.0;
+    const int D = mesh_.dim();
+
+    std::vector<Spring> springs;
+    for (const GroundSpring& g : stage.springs) {
+        if (g.direction < 0 || g.direction >= D) {
+            throw std::invalid_argument(fmt::format(
+                "spring direction {} on node set '{}' does not exist in {}D", g.direction,
+                g.node_set, D));
+        }
+        const auto& nodes = mesh_.node_set(g.node_set);
+        Spring sp;
+        sp.key = fmt::format("{}#{}", g.node_set, g.direction);
+        sp.stiffness = nodes.empty() ? 0.0 : g.total_stiffness / double(nodes.size());
+        for (int n : nodes) {
+            sp.dofs.push_back(n * D + g.direction);
+        }
+        const auto prev = std::find_if(springs_.begin(), springs_.end(),
+                                       [&](const Spring& o) { return o.key == sp.key; });
+        if (prev != springs_.end()) {
+            sp.reference = prev->reference; // the spring continues from the previous stage
+        } else {
+            for (int d : sp.dofs) {
+                sp.reference.push_back(u_[static_cast<std::size_t>(d)]);
+            }
+        }
+        springs.push_back(std::move(sp));
+    }
+    springs_ = std::move(springs);
+
+    if (stage.gravity && gravity_unit_.empty()) {
+        PhaseTimer timer(timers_.gravity);
+        std::vector<double> density(static_cast<std::size_t>(mesh_.n_elements()), 0.0);
+        for (const auto& s : sets_) {
+            for (int e : s->elements) {
+                density[static_cast<std::size_t>(e)] = s->spec.density;
+            }
+        }
+        gravity_unit_ = unit_gravity_forces(mesh_, density);
+        ++counters_.gravity_load_builds;
+    }
+    for (const FacePressure& p : stage.pressures) {
+        if (!pressure_unit_.contains(p.face_set)) {
+            PhaseTimer timer(timers_.pressure);
+            pressure_unit_[p.face_set] = unit_pressure_forces(mesh_, p.face_set);
+            ++counters_.pressure_load_builds;
+        }
+    }
+    residual_.assign(static_cast<std::size_t>(dofs_.n_equations), 0.0);
+    correction_.assign(static_cast<std::size_t>(dofs_.n_equations), 0.0);
+}
+
+void StaticSolver::external_force(double t, std::vector<double>& f) {
+    std::fill(f.begin(), f.end(), 0.0);
+    if (stage_->gravity) {
+        PhaseTimer timer(timers_.gravity);
+        const double g = stage_->gravity->from + (stage_->gravity->to - stage_->gravity->from) * t;
+        for (std::size_t d = 0; d < f.size(); ++d) {
+            f[d] += g * gravity_unit_[d];
+        }
+        ++counters_.gravity_load_applications;
+    }
+    if (!stage_->pressures.empty()) {
+        PhaseTimer timer(timers_.pressure);
+        for (const FacePressure& p : stage_->pressures) {
+            const double v = p.from + (p.to - p.from) * t;
+            const auto& unit = pressure_unit_.at(p.face_set);
+            for (std::size_t d = 0; d < f.size(); ++d) {
+                f[d] += v * unit[d];
+            }
+        }
+    }
+}
+
+template <int D>
+void StaticSolver::strains_d(std::span<const double> du) {
+    using Tr = ElementTraits<D>;
+    parallel_chunks(
+        static_cast<std::size_t>(mesh_.n_elements()), settings_.element_grain, [&](std::size_t e) {
+            SetData& s = *sets_[static_cast<std::size_t>(set_of_element_[e])];
+            const int ei = static_cast<int>(e);
+            double ue[Tr::ndof];
+            for (int a = 0; a < Tr::nen; ++a) {
+                const int n = mesh_.node(ei, a);
+                for (int i = 0; i < D; ++i) {
+                    ue[a * D + i] = du[static_cast<std::size_t>(n * D + i)];
+                }
+            }
+            for (int q = 0; q < geom_.nip; ++q) {
+                const Sym<double> de = strain_at<D>(geom_.gradients(ei, q), ue);
+                const auto p = static_cast<std::size_t>(local_of_element_[e] * geom_.nip + q);
+                for (int j = 0; j < 6; ++j) {
+                    s.deps_cols[static_cast<std::size_t>(j)][p] = de[static_cast<std::size_t>(j)];
+                }
+            }
+        });
+}
+
+void StaticSolver::compute_strains(std::span<const double> du) {
+    if (mesh_.dim() == 2) {
+        strains_d<2>(du);
+    } else {
+        strains_d<3>(du);
+    }
+}
+
+bool StaticSolver::update_materials(bool with_tangent, std::string& error) {
+    if (!with_tangent) {
+        for (auto& s : sets_) {
+            const UpdateReport rep = s->material->update(settings_.update);
+            counters_.constitutive_evaluations += static_cast<long>(rep.points);
+            if (rep.failed > 0) {
+                counters_.failed_point_updates += static_cast<long>(rep.failed);
+                const auto local = static_cast<int>(rep.first_failed) / geom_.nip;
+                error = fmt::format(
+                    "{} material point(s) of set '{}' ({}) failed, first at element {} "
+                    "integration point {}",
+                    rep.failed, s->spec.element_set, s->material->model_name(),
+                    s->elements[static_cast<std::size_t>(local)],
+                    static_cast<int>(rep.first_failed) % geom_.nip);
+                return false;
+            }
+        }
+        return true;
+    }
+    for (auto& s : sets_) {
+        const TangentReport rep = s->material->tangent(settings_.tangent, settings_.update,
+                                                       mesh_.dim(), s->tangent.data());
+        counters_.constitutive_evaluations += rep.evaluations;
+        counters_.tangent_evaluations += rep.evaluations;
+        counters_.tangent_fallbacks += rep.fallbacks;
+    }
+    return true;
+}
+
+template <int D>
+void StaticSolver::assemble_d(std::span<const double> du, bool with_tangent) {
+    using Tr = ElementTraits<D>;
+    constexpr int nc = Tr::ncomp;
+    const bool reduced = settings_.integration == Integration::reduced;
+    std::vector<std::array<const double*, 6>> stress(sets_.size());
+    for (std::size_t k = 0; k < sets_.size(); ++k) {
+        for (int j = 0; j < 6; ++j) {
+            stress[k][static_cast<std::size_t>(j)] = sets_[k]->material->trial(j);
+        }
+    }
+    if (with_tangent) {
+        system_->zero_values();
+    } else {
+        std::fill(f_int_.begin(), f_int_.end(), 0.0);
+    }
+    for (int c = 0; c < system_->n_colours(); ++c) {
+        const auto elements = system_->colour(c);
+        parallel_chunks(elements.size(), settings_.element_grain, [&](std::size_t k) {
+            const int e = elements[k];
+            const auto eu = static_cast<std::size_t>(e);
+            const auto set = static_cast<std::size_t>(set_of_element_[eu]);
+            const int local = local_of_element_[eu];
+            int dof[Tr::ndof];
+            for (int a = 0; a < Tr::nen; ++a) {
+                for (int i = 0; i < D; ++i) {
+                    dof[a * D + i] = mesh_.node(e, a) * D + i;
+                }
+            }
+            if (with_tangent) {
+                Eigen::Matrix<double, Tr::ndof, Tr::ndof> K =
+                    Eigen::Matrix<double, Tr::ndof, Tr::ndof>::Zero();
+                const double* tangent = sets_[set]->tangent.data();
+                for (int q = 0; q < geom_.nip; ++q) {
+                    const auto p = static_cast<std::size_t>(local * geom_.nip + q);
+                    add_tangent<D>(geom_.gradients(e, q), tangent + p * nc * nc,
+                                   geom_.weight(e, q), K);
+                }
+                if (reduced) {
+                    add_hourglass_tangent<D>(geom_.hourglass_gamma.data() +
+                                                 eu * Tr::n_hourglass * Tr::nen,
+                                             hourglass_k_[eu], K);
+                }
+                system_->add_element_matrix(e, K.data());
+                return;
+            }
+            double f[Tr::ndof] = {};
+            for (int q = 0; q < geom_.nip; ++q) {
+                const auto p = static_cast<std::size_t>(local * geom_.nip + q);
+                Sym<double> s;
+                for (int j = 0; j < 6; ++j) {
+                    s[static_cast<std::size_t>(j)] = stress[set][static_cast<std::size_t>(j)][p];
+                }
+                add_internal_force<D>(geom_.gradients(e, q), s, geom_.weight(e, q), f);
+            }
+            if (reduced) { // hourglass force of the total displacement
+                double ut[Tr::ndof];
+                for (int k2 = 0; k2 < Tr::ndof; ++k2) {
+                    const auto d = static_cast<std::size_t>(dof[k2]);
+                    ut[k2] = u_[d] + du[d];
+                }
+                add_hourglass_force<D>(geom_.hourglass_gamma.data() +
+                                           eu * Tr::n_hourglass * Tr::nen,
+                                       hourglass_k_[eu], ut, f);
+            }
+            for (int k2 = 0; k2 < Tr::ndof; ++k2) {
+                f_int_[static_cast<std::size_t>(dof[k2])] += f[k2];
+            }
+        });
+    }
+}
+
+void StaticSolver::assemble(std::span<const double> du, bool with_tangent) {
+    if (mesh_.dim() == 2) {
+        assemble_d<2>(du, with_tangent);
+    } else {
+        assemble_d<3>(du, with_tangent);
+    }
+}
+
+bool StaticSolver::evaluate(double t, std::span<const double> increment, bool with_tangent,
+                            std::string& error) {
+    if (!stage_) {
+        error = "evaluate() before begin_stage()";
+        return false;
+    }
+    if (increment.size() != u_.size()) {
+        error = fmt::format("increment of length {} for {} DOFs", increment.size(), u_.size());
+        return false;
+    }
+    {
+        PhaseTimer timer(timers_.element);
+        compute_strains(increment);
+        if (!update_materials(false, error)) {
+            return false;
+        }
+    }
+    {
+        PhaseTimer timer(timers_.assembly);
+        assemble(increment, false);
+        for (const Spring& sp : springs_) {
+            for (std::size_t k = 0; k < sp.dofs.size(); ++k) {
+                const auto d = static_cast<std::size_t>(sp.dofs[k]);
+                f_int_[d] += sp.stiffness * (u_[d] + increment[d] - sp.reference[k]);
+            }
+        }
+    }
+    external_force(t, f_ext_);
+    {
+        PhaseTimer timer(timers_.assembly);
+        std::fill(residual_.begin(), residual_.end(), 0.0);
+        for (std::size_t d = 0; d < u_.size(); ++d) {
+            const int eq = dofs_.equation[d];
+            if (eq >= 0) {
+                residual_[static_cast<std::size_t>(eq)] += f_ext_[d] - f_int_[d];
+            }
+        }
+        reference_force_ =
+            std::max({norm2(f_ext_), norm2(f_int_), settings_.reference_force_floor});
+    }
+    if (!with_tangent) {
+        return true;
+    }
+    {
+        PhaseTimer timer(timers_.element);
+        update_materials(true, error);
+    }
+    PhaseTimer timer(timers_.assembly);
+    assemble(increment, true);
+    for (const Spring& sp : springs_) {
+        for (int d : sp.dofs) {
+            const int eq = dofs_.equation[static_cast<std::size_t>(d)];
+            if (eq >= 0) {
+                system_->add_diagonal(eq, sp.stiffness);
+            }
+        }
+    }
+    return true;
+}
+
+bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& info,
+                                   std::string& error) {
+    std::fill(du_.begin(), du_.end(), 0.0);
+    if (settings_.extrapolate && dt_last_ > 0.0) {
+        const double scale = (t_end - t_begin) / dt_last_;
+        for (std::size_t d = 0; d < du_.size(); ++d) {
+            if (dofs_.equation[d] >= 0) {
+                du_[d] = scale * du_last_[d];
+            }
+        }
+    }
+    for (std::size_t k = 0; k < dofs_.prescribed.size(); ++k) {
+        const auto d = static_cast<std::size_t>(dofs_.prescribed[k]);
+        du_[d] = u_stage_start_[d] + dofs_.prescribed_change[k] * t_end - u_[d];
+    }
+    const double tol_r = settings_.residual_tolerance;
+    const double tol_u = settings_.displacement_tolerance;
+    double last_correction = std::numeric_limits<double>::infinity();
+    for (int it = 0;; ++it) {
+        if (!evaluate(t_end, du_, false, error)) {
+            return false;
+        }
+        const double rel = norm2(residual_) / reference_force_;
+        info.residuals.push_back(rel);
+        if (!std::isfinite(rel)) {
+            error = "the residual is not finite";
+            return false;
+        }
+        if (rel <= 1.0e-2 * tol_r || (it > 0 && rel <= tol_r && last_correction <= tol_u)) {
+            return true;
+        }
+        if (it == settings_.max_iterations) {
+            error = fmt::format("Newton did not converge in {} iterations (relative residual "
+                                "{:.3e}, last relative correction {:.3e})",
+                                settings_.max_iterations, rel, last_correction);
+            return false;
+        }
+        // Tangent at the state just evaluated (the base lanes' substeps are still in place).
+        {
+            PhaseTimer timer(timers_.element);
+            update_materials(true, error);
+        }
+        {
+            PhaseTimer timer(timers_.assembly);
+            assemble(du_, true);
+            for (const Spring& sp : springs_) {
+                for (int d : sp.dofs) {
+                    const int eq = dofs_.equation[static_cast<std::size_t>(d)];
+                    if (eq >= 0) {
+                        system_->add_diagonal(eq, sp.stiffness);
+                    }
+                }
+            }
+        }
+        {
+            PhaseTimer timer(timers_.solve);
+            if (!linear_.factorise(system_->matrix(), system_->pattern_id(), error) ||
+                !linear_.solve(residual_.data(), correction_.data(), error)) {
+                return false;
+            }
+        }
+        ++counters_.newton_iterations;
+        for (std::size_t d = 0; d < du_.size(); ++d) {
+            const int eq = dofs_.equation[d];
+            if (eq >= 0) {
+                du_[d] += correction_[static_cast<std::size_t>(eq)];
+            }
+        }
+        last_correction = norm2(correction_) / std::max(norm2(du_), 1.0e-300);
+        info.corrections.push_back(last_correction);
+    }
+}
+
+StageResult StaticSolver::run_stage(const Stage& stage, const IncrementCallback& on_increment) {
+    begin_stage(stage);
+    StageResult result;
+    const int steps = std::max(1, stage.steps);
+    for (int k = 1; k <= steps; ++k) {
+        double t_a = double(k - 1) / steps;
+        // Pending ends of sub-increments with their cut depth, last = next to try.
+        std::vector<std::pair<double, int>> pending = {{double(k) / steps, 0}};
+        while (!pending.empty()) {
+            const auto [t_b, depth] = pending.back();
+            IncrementInfo info;
+            info.stage = stage_count_;
+            info.step = k;
+            info.t_begin = t_a;
+            info.t_end = t_b;
+            info.cut_depth = depth;
+            std::string error;
+            if (solve_increment(t_a, t_b, info, error)) {
+                for (auto& s : sets_) {
+                    s->material->commit();
+                }
+                for (std::size_t d = 0; d < u_.size(); ++d) {
+                    u_[d] += du_[d];
+                }
+                f_int_committed_ = f_int_;
+                du_last_ = du_;
+                dt_last_ = t_b - t_a;
+                f_ext_committed_ = f_ext_;
+                ++counters_.increments;
+                ++result.increments;
+                t_a = t_b;
+                pending.pop_back();
+                if (on_increment) {
+                    on_increment(info);
+                }
+                continue;
+            }
+            if (depth >= settings_.max_cuts) {
+                result.ok = false;
+                result.reason = fmt::format(
+                    "stage {} ('{}'), step {} of {}, pseudo-time {:.6g} to {:.6g}: {} (after "
+                    "halving the step {} times)",
+                    stage_count_, stage.name, k, steps, t_a, t_b, error, depth);
+                return result;
+            }
+            ++counters_.cuts;
+            dt_last_ = 0.0; // the retry starts from zero: the extrapolation may have misled
+            pending.back().second = depth + 1;
+            pending.emplace_back(0.5 * (t_a + t_b), depth + 1);
+        }
+    }
+    return result;
+}
+
+} // namespace ifsim::fem

@@ -1,0 +1,169 @@
+#pragma once
+// Implicit static analysis, small strain: stages of increments, a Newton-Raphson iteration per
+// increment, increment cutting on failure.
+//
+// One Newton iteration (phases timed separately):
+//   element  - strain increments at every integration point from the displacement increment,
+//              the batched constitutive update of each element set (one MaterialPoints of the
+//              set's model), and the material tangent (perturbation lanes or rate stiffness);
+//   assembly - element internal forces and tangents (plus hourglass control), scattered into
+//              the full force vector and the reduced sparse matrix colour by colour; springs;
+//              residual R = f_ext - f_int on the equations;
+//   solve    - numeric factorisation (symbolic analysis once per pattern) and solve.
+// Converged: the trial states are committed (swap) and the displacements updated. Not
+// converged in max_iterations, a material point failed, or a singular system: nothing is
+// committed and the increment is halved, up to max_cuts times, then the stage fails with a
+// reason naming stage, step and pseudo-time.
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fem/dof_map.hpp"
+#include "fem/element_geometry.hpp"
+#include "fem/linear_solver.hpp"
+#include "fem/mesh.hpp"
+#include "fem/solver_settings.hpp"
+#include "fem/sparse_system.hpp"
+#include "fem/stage.hpp"
+
+namespace ifsim::fem {
+
+struct SolverCounters {
+    long increments = 0;        // converged (committed) increments
+    long cuts = 0;              // increments halved after a failure
+    long newton_iterations = 0; // linear solves of the Newton iteration
+    long constitutive_evaluations = 0; // point updates incl. perturbation lanes
+    long tangent_evaluations = 0;      // of which perturbation lanes
+    long tangent_fallbacks = 0;        // points whose perturbation lanes failed (rate used)
+    long failed_point_updates = 0;     // base updates with status failed
+    long patterns_built = 0;           // sparse patterns (one per distinct DOF map)
+    long gravity_load_builds = 0;      // unit gravity vectors integrated
+    long gravity_load_applications = 0; // evaluations with gravity in the external force
+    long pressure_load_builds = 0;
+    long k0_points = 0; // integration points given a K0 initial stress
+    LinearSolverCounters linear;
+};
+
+struct SolverTimers {
+    double element = 0.0;  // strains, constitutive update, material tangent
+    double assembly = 0.0; // element vectors/matrices, scatter, residual
+    double solve = 0.0;    // factorisation and solve
+    double gravity = 0.0;  // building and scaling the gravity load
+    double k0 = 0.0;       // initial K0 stress
+    double pressure = 0.0; // building and scaling face pressures
+};
+
+struct IncrementInfo {
+    int stage = 0; // 1-based count of run_stage calls
+    int step = 0;  // nominal step of the stage (1-based)
+    double t_begin = 0.0;
+    double t_end = 0.0;
+    int cut_depth = 0;                 // halvings of the nominal step for this increment
+    std::vector<double> residuals;     // relative residual at each evaluation
+    std::vector<double> corrections;   // relative correction of each Newton iteration
+};
+
+struct StageResult {
+    bool ok = true;
+    std::string reason;
+    int increments = 0;
+};
+
+class StaticSolver {
+public:
+    // Throws std::invalid_argument for an invalid mesh, an element without material or in two
+    // sets, an initial state of the wrong length, or an inverted element.
+    StaticSolver(Mesh mesh, std::vector<ElementSetMaterial> materials, SolverSettings settings);
+    ~StaticSolver();
+
+    using IncrementCallback = std::function<void(const IncrementInfo&)>;
+    StageResult run_stage(const Stage& stage, const IncrementCallback& on_increment = {});
+
+    // Committed results.
+    const std::vector<double>& displacement() const { return u_; }
+    // Internal forces (incl. springs) at the last converged state, full length; at prescribed
+    // DOFs minus the external load this is the reaction.
+    const std::vector<double>& internal_force() const { return f_int_committed_; }
+    // External loads (gravity, pressures) at the last converged state, full length.
+    const std::vector<double>& external_force() const { return f_ext_committed_; }
+    std::vector<double> state(int element, int point) const;       // committed
+    std::vector<double> trial_state(int element, int point) const; // last evaluation
+    int points_per_element() const { return geom_.nip; }
+    const Mesh& mesh() const { return mesh_; }
+    const ElementGeometry& geometry() const { return geom_; }
+    const SolverCounters& counters() const;
+    const SolverTimers& timers() const { return timers_; }
+    const SolverSettings& settings() const { return settings_; }
+
+    // Probing (tests, diagnostics): prepare a stage without running it, then evaluate the
+    // reduced residual and optionally the tangent at a trial increment (full DOF vector) for
+    // the loads at pseudo-time t, from the committed state. Nothing is committed.
+    void begin_stage(const Stage& stage);
+    bool evaluate(double t, std::span<const double> increment, bool with_tangent,
+                  std::string& error);
+    const DofMap& dof_map() const { return dofs_; }
+    const std::vector<double>& residual() const { return residual_; }
+    const Eigen::SparseMatrix<double>& tangent_matrix() const { return system_->matrix(); }
+
+private:
+    struct SetData;
+    struct Spring {
+        std::string key;
+        std::vector<int> dofs;
+        std::vector<double> reference;
+        double stiffness = 0.0; // per node
+    };
+
+    bool solve_increment(double t_begin, double t_end, IncrementInfo& info, std::string& error);
+    void compute_strains(std::span<const double> du);
+    bool update_materials(bool with_tangent, std::string& error);
+    void assemble(std::span<const double> du, bool with_tangent);
+    void external_force(double t, std::vector<double>& f);
+    void apply_k0();
+    void hourglass_stiffness();
+    template <int D>
+    void strains_d(std::span<const double> du);
+    template <int D>
+    void assemble_d(std::span<const double> du, bool with_tangent);
+
+    Mesh mesh_;
+    SolverSettings settings_;
+    ElementGeometry geom_;
+    std::vector<std::unique_ptr<SetData>> sets_;
+    std::vector<int> set_of_element_;
+    std::vector<int> local_of_element_;
+    std::vector<double> hourglass_k_; // per element (reduced integration)
+
+    // Stage data.
+    const Stage* stage_ = nullptr;
+    int stage_count_ = 0;
+    DofMap dofs_;
+    std::unique_ptr<SparseSystem> system_;
+    LinearSolver linear_;
+    std::vector<double> u_stage_start_;
+    std::vector<Spring> springs_;
+    std::vector<double> gravity_unit_; // empty until a stage asks for gravity
+    std::map<std::string, std::vector<double>> pressure_unit_;
+
+    // Displacements and forces.
+    std::vector<double> u_;              // committed
+    std::vector<double> du_;             // trial increment
+    std::vector<double> du_last_;        // last converged increment of the stage
+    double dt_last_ = 0.0;               // its pseudo-time length (0: none yet)
+    std::vector<double> f_int_;          // trial internal force, full
+    std::vector<double> f_int_committed_;
+    std::vector<double> f_ext_;
+    std::vector<double> f_ext_committed_;
+    std::vector<double> residual_;       // reduced
+    std::vector<double> correction_;     // reduced
+    double reference_force_ = 0.0;
+
+    mutable SolverCounters counters_;
+    SolverTimers timers_;
+};
+
+} // namespace ifsim::fem

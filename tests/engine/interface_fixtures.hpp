@@ -1,0 +1,180 @@
+#pragma once
+// Shared set-up of the interface-kernel and contact-engine tests: the paper's parameter sets with
+// a roughness factor, interface start states (paper §5.1: D_r0 = 0.88, K0 = 0.5, intergranular
+// strain mobilised in the shearing direction), a tilted local frame, and the direct evaluation
+// of Algorithm 1 for one point. Kernel headers only, so both test folders can use it; the
+// helpers for the point-level interface test (engine library) are compiled only where
+// IFSIM_TEST_INTERFACE_DRIVER is defined before the include.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "kernels/interface_algorithm1.hpp"
+#include "kernels/parameter_sets.hpp"
+
+namespace ifsim::test {
+
+// Table 1 (L4C) with roughness kappa (Eqs. 30-32).
+inline HypoplasticityParams l4c(double kappa = 0.9) {
+    HypoplasticityParams p = parameter_sets::hypoplasticity_l4c();
+    p.roughness = kappa;
+    p.prepare();
+    return p;
+}
+
+// Table 4 (Karlsruhe sand, Sanisand) with roughness kappa (Eqs. 33-35).
+inline SanisandParams karlsruhe_sanisand(double kappa = 0.9) {
+    SanisandParams p = parameter_sets::sanisand_karlsruhe();
+    p.roughness = kappa;
+    p.prepare();
+    return p;
+}
+
+// e0 of the monotonic tests of §5.1: D_r0 = 0.88 between e_c0 and e_d0 of Table 1.
+inline double l4c_void_ratio(double relative_density = 0.88) {
+    const HypoplasticityParams p = parameter_sets::hypoplasticity_l4c();
+    return p.e_c0 - relative_density * (p.e_c0 - p.e_d0);
+}
+
+// Interface (or sample) state in local axes (1 = n, 2 = t1, 3 = t2): sigma_N = t_N, in-plane
+// stresses K0 t_N, intergranular strain fully mobilised in the t1 shearing direction (tensor
+// components: h_12 = h_21 = R / sqrt 2, |h| = R).
+inline StateVec<double, Hypoplasticity::n_state> hypo_state(double t_N = -100.0, double k0 = 0.5,
+                                                            double e = l4c_void_ratio()) {
+    StateVec<double, Hypoplasticity::n_state> y{};
+    y[0] = t_N;
+    y[1] = y[2] = k0 * t_N;
+    y[6] = e;
+    y[Hypoplasticity::h_index + 3] = parameter_sets::hypoplasticity_l4c().R / std::sqrt(2.0);
+    return y;
+}
+
+inline StateVec<double, Sanisand::n_state> sanisand_state(double t_N = -100.0, double k0 = 0.5,
+                                                          double e = 0.75) {
+    return Sanisand::initial_state({t_N, k0 * t_N, k0 * t_N, 0.0, 0.0, 0.0}, e);
+}
+
+inline std::vector<double> as_vector(const auto& y) {
+    return std::vector<double>(y.begin(), y.end());
+}
+
+// A local frame that is not aligned with the global axes, so every projection of the gap onto
+// n, t1, t2 is exercised. 2D: rotation in the 1-2 plane, t2 = e3 out of plane.
+struct Frame {
+    std::array<double, 3> n, t1, t2;
+};
+inline Frame tilted_frame(int ndim) {
+    const double a = 0.3, b = 0.2;
+    Frame f;
+    f.n = {std::cos(a), std::sin(a), 0.0};
+    f.t1 = {-std::sin(a), std::cos(a), 0.0};
+    f.t2 = {0.0, 0.0, 1.0};
+    if (ndim == 3) {
+        // Rotate n and t2 about t1.
+        f.n = {std::cos(a) * std::cos(b), std::sin(a) * std::cos(b), std::sin(b)};
+        f.t2 = {-std::cos(a) * std::sin(b), -std::sin(a) * std::sin(b), std::cos(b)};
+    }
+    return f;
+}
+
+// Inputs of one contact point in the engine's conventions: t_N is the penalty traction with
+// k_N = d t_N / d g_N, gap g = x(1) - x(2) (Eq. 7), tangential gap increment master minus slave
+// (Eq. A13).
+struct PointInput {
+    double t_N = -100.0, k_N = 2.0e5;
+    double dg1 = 1.0e-5, dg2 = 4.0e-6;
+    double s_p1 = -52.0, s_p2 = -47.0;
+};
+
+// The input of Algorithm 1 after a change dgap of the gap vector g (global components), i.e.
+// after a slave displacement +dgap or a master displacement -dgap.
+inline InterfaceInput<double> shifted_input(const PointInput& p, const Frame& f,
+                                            const std::array<double, 3>& dgap, double forced) {
+    double gn = 0.0, g1 = 0.0, g2 = 0.0;
+    for (int d = 0; d < 3; ++d) {
+        gn += dgap[d] * f.n[d];
+        g1 += dgap[d] * f.t1[d];
+        g2 += dgap[d] * f.t2[d];
+    }
+    return {p.t_N + p.k_N * gn, p.dg1 - g1, p.dg2 - g2, p.s_p1, p.s_p2, forced};
+}
+
+// One scalar evaluation of Algorithm 1 from a start state (model state y, interface strains).
+template <class M>
+struct DirectResult {
+    InterfaceState<double, M::n_state> st;
+    InterfaceStats<double> stats;
+    std::array<double, 3> traction() const { return {st.y[0], st.y[3], st.y[4]}; }
+};
+template <class M>
+DirectResult<M> direct_update(const typename M::Params& mp, const InterfaceSettings& s,
+                              const InterfaceState<double, M::n_state>& start,
+                              const InterfaceInput<double>& in) {
+    DirectResult<M> r;
+    r.st = start;
+    interface_update<M, double>(mp, s, r.st, in, r.stats);
+    return r;
+}
+template <class M>
+DirectResult<M> direct_update(const typename M::Params& mp, const InterfaceSettings& s,
+                              const StateVec<double, M::n_state>& y,
+                              const InterfaceInput<double>& in) {
+    InterfaceState<double, M::n_state> start;
+    start.y = y;
+    return direct_update<M>(mp, s, start, in);
+}
+
+inline bool state_is_finite(const auto& y) {
+    return std::all_of(y.begin(), y.end(), [](double v) { return std::isfinite(v); });
+}
+
+} // namespace ifsim::test
+
+#ifdef IFSIM_TEST_INTERFACE_DRIVER
+#include <gtest/gtest.h>
+
+#include "engine/interface_test.hpp"
+
+namespace ifsim::test {
+
+// §5.1: L4C with roughness kappa as interface, the same sand as a continuum (kappa = 1) as the
+// sample, both from t_N0 with K0 = 0.5, e0 from D_r0 = 0.88, h mobilised along t1; d_s = 3 mm,
+// H = 20 mm; sub-increments of 1e-4 (20x the paper's 5e-6) to keep the fast suite fast.
+inline InterfaceTestSpec l4c_spec(InterfaceFormulation f, double kappa = 0.9,
+                                  double t_N0 = -100.0) {
+    InterfaceTestSpec spec;
+    spec.interface_material = l4c(kappa);
+    spec.interface_state = as_vector(hypo_state(t_N0));
+    spec.sample_material = l4c(1.0);
+    spec.sample_state = as_vector(hypo_state(t_N0));
+    spec.contact.interface.formulation = f;
+    spec.contact.interface.max_subincrement = 1.0e-4;
+    return spec;
+}
+
+struct DriverRun {
+    InterfaceTestResult result;
+    std::vector<InterfaceRow> rows;
+};
+inline DriverRun run_driver(const InterfaceTestSpec& spec) {
+    DriverRun r;
+    r.result = run_interface_test(spec, [&](const InterfaceRow& row) { r.rows.push_back(row); });
+    return r;
+}
+
+// Eqs. 25-26 between rows: the step's slip increment over the band thickness at its start.
+inline void expect_shear_strain_follows_slip(const std::vector<InterfaceRow>& rows,
+                                             double d_s0 = 0.003) {
+    for (std::size_t k = 1; k < rows.size(); ++k) {
+        const double d_slip = rows[k].slip1 - rows[k - 1].slip1;
+        EXPECT_NEAR(rows[k].gamma1 - rows[k - 1].gamma1,
+                    std::atan(d_slip / rows[k - 1].band_thickness), 1.0e-12)
+            << "step " << rows[k].step;
+        EXPECT_NEAR(rows[k].band_thickness, d_s0 * (1.0 + rows[k].eps_n), 1.0e-15);
+    }
+}
+
+} // namespace ifsim::test
+#endif // IFSIM_TEST_INTERFACE_DRIVER
