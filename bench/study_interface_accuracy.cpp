@@ -71,6 +71,11 @@ struct Options {
     double reference_model_tolerance = 1.0e-5;
     // Tighter step tolerances make the test driver cut steps (a different global path).
     double reference_step_tolerance = 1.0e-6;
+    // Algorithm 1's Newton in the reference: the rate stiffness converges only linearly, so the
+    // tight tolerance needs more than the default 30 iterations (or the driver cuts steps).
+    bool reference_perturbation_jacobian = false;
+    int reference_newton_iterations = 100;
+    double tight_step_tolerance = 1.0e-6; // the test's Newton tolerance of the *_tight_step runs
     bool paths = false; // also write DIR/path_<test>.csv (reference and default paths)
 };
 
@@ -85,7 +90,8 @@ struct Options {
         "  --knobs LIST         only these knobs (default, max_subincrement, tolerance,\n"
         "                       polish_iterations, jacobian, theta, step_tolerance,\n"
         "                       model_tolerance, inner_jacobian, adaptive_tolerance,\n"
-        "                       adaptive_tolerance_tight_step); the reference always runs\n"
+        "                       adaptive_tolerance_tight_step, adaptive_model_tolerance);\n"
+        "                       the reference always runs\n"
         "  --mono-displacement M  plate displacement of the monotonic tests in m (default 0.002)\n"
         "  --mono-steps N       steps of the monotonic tests (default 200)\n"
         "  --cycles N           cycles of the cyclic test (default 1; 0: first quarter only)\n"
@@ -94,6 +100,10 @@ struct Options {
         "  --reference-factor F reference sub-increment = 5e-6 / F (default 10)\n"
         "  --reference-tolerance T, --reference-model-tolerance T,\n"
         "  --reference-step-tolerance T  the reference's other settings (1e-7, 1e-5, 1e-6)\n"
+        "  --reference-newton-iterations N  Algorithm 1's iteration limit there (100)\n"
+        "  --reference-perturbation-jacobian  Algorithm 1's Newton Jacobian there by\n"
+        "                       perturbation (default: rate stiffness)\n"
+        "  --tight-step-tolerance T  the test's Newton tolerance of the runs at a tight one (1e-6)\n"
         "  --paths              also write DIR/path_TEST.csv: u_t1, t_t1, u_n of the reference\n"
         "                       and of the default run\n");
     std::exit(code);
@@ -173,8 +183,14 @@ Options parse(int argc, char** argv) {
             o.reference_tolerance = number();
         } else if (a == "--reference-step-tolerance") {
             o.reference_step_tolerance = number();
+        } else if (a == "--reference-perturbation-jacobian") {
+            o.reference_perturbation_jacobian = true;
+        } else if (a == "--reference-newton-iterations") {
+            o.reference_newton_iterations = count(1);
         } else if (a == "--reference-model-tolerance") {
             o.reference_model_tolerance = number();
+        } else if (a == "--tight-step-tolerance") {
+            o.tight_step_tolerance = number();
         } else if (a == "--paths") {
             o.paths = true;
         } else if (a == "--knobs") {
@@ -357,7 +373,7 @@ std::vector<Setting> make_settings(InterfaceFormulation f, const Options& o) {
     for (double v : q ? V{1e-10} : V{1e-6, 1e-10}) {
         add("theta", num(v), [&](Setting& s) { s.contact.perturbation = v; });
     }
-    for (double v : q ? V{1e-6} : V{1e-3, 1e-6}) {
+    for (double v : q ? V{o.tight_step_tolerance} : V{1e-3, o.tight_step_tolerance}) {
         add("step_tolerance", num(v), [&](Setting& s) { s.step_tolerance = v; });
     }
     if (!q) {
@@ -371,15 +387,39 @@ std::vector<Setting> make_settings(InterfaceFormulation f, const Options& o) {
     }
     // Adaptive sub-increments (step doubling on the shear stress), at the test's default Newton
     // tolerance and at a tight one: the first shows what the outer Newton leaves behind.
-    for (double step_tol : q ? V{1e-6} : V{InterfaceTestSpec{}.newton_tolerance, 1e-6}) {
+    for (double step_tol : q ? V{o.tight_step_tolerance}
+                             : V{InterfaceTestSpec{}.newton_tolerance, o.tight_step_tolerance}) {
         const bool tight = step_tol < InterfaceTestSpec{}.newton_tolerance;
-        for (double v : q ? V{2e-3, 2e-5} : V{2e-2, 2e-3, 2e-4, 2e-5, 2e-6}) {
+        const V values = q       ? V{2e-3, 2e-5}
+                         : tight ? V{2e-3, 2e-5, 2e-6}
+                                 : V{2e-2, 2e-3, 2e-4, 2e-5, 2e-6};
+        for (double v : values) {
             add(tight ? "adaptive_tolerance_tight_step" : "adaptive_tolerance", num(v),
                 [&](Setting& s) {
                     s.contact.interface.adaptive = true;
                     s.contact.interface.adaptive_tolerance = v;
                     s.step_tolerance = step_tol;
                 });
+        }
+    }
+    // Adaptive sub-increments grow to whole steps, where the model's own integration error
+    // (IntegrationSettings::tolerance) shows: adaptive at the tight step tolerance with tighter
+    // model tolerances.
+    if (!q) {
+        for (double v : {1e-5}) {
+            add("adaptive_model_tolerance", num(v), [&](Setting& s) {
+                s.contact.interface.adaptive = true;
+                s.step_tolerance = o.tight_step_tolerance;
+                s.contact.interface.model.tolerance = v;
+            });
+        }
+        for (double v : {2e-5, 2e-7}) {
+            add("adaptive_inner_tolerance", num(v), [&](Setting& s) {
+                s.contact.interface.adaptive = true;
+                s.step_tolerance = o.tight_step_tolerance;
+                s.contact.interface.tolerance = v;
+                s.contact.interface.max_newton_iterations = 100;
+            });
         }
     }
     return out;
@@ -392,6 +432,9 @@ Setting reference_setting(InterfaceFormulation f, const Options& o) {
     s.contact.interface.polish_iterations = 1;
     s.contact.interface.model.tolerance = o.reference_model_tolerance;
     s.step_tolerance = o.reference_step_tolerance;
+    s.contact.interface.newton_jacobian =
+        o.reference_perturbation_jacobian ? NewtonJacobian::perturbation : NewtonJacobian::rate;
+    s.contact.interface.max_newton_iterations = o.reference_newton_iterations;
     s.value = num(s.contact.interface.max_subincrement);
     return s;
 }
@@ -580,7 +623,10 @@ void write_outputs(const Options& o, const std::vector<TestCase>& cases,
                       {"tolerance", o.reference_tolerance},
                       {"polish_iterations", 1},
                       {"model_tolerance", o.reference_model_tolerance},
-                      {"step_tolerance", o.reference_step_tolerance}};
+                      {"step_tolerance", o.reference_step_tolerance},
+                      {"max_newton_iterations", o.reference_newton_iterations},
+                      {"inner_jacobian",
+                       o.reference_perturbation_jacobian ? "perturbation" : "rate"}};
     j["error_definition"] = "max over the path of |x - x_ref| / max |x_ref| at the same plate "
                             "displacements, x = t_t1 (err_tau) or u_n (err_un)";
     for (const auto& tc : cases) {

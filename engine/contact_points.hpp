@@ -33,9 +33,9 @@ inline constexpr int n_inputs = 15;
 inline constexpr int traction = 0; // t_N, tau1, tau2
 inline constexpr int jacobian = 3; // 3 * (2 ndim) columns: comp + 3 * column
 inline constexpr int status = 21, subincrements = 22, newton_iterations = 23, evaluations = 24,
-                     model_substeps = 25, residual = 26, open = 27, cause = 28,
-                     band_clamped = 29;
-inline constexpr int n_outputs = 30;
+                     model_substeps = 25, residual = 26, open = 27, cause = 28, band_clamped = 29,
+                     dropped_columns = 30;
+inline constexpr int n_outputs = 31;
 } // namespace contact_col
 
 // Extra state entries after the model state.

@@ -8,8 +8,15 @@
 //
 // Jacobian schemes:
 //   perturbation       Eq. 37, forward differences of the whole Algorithm 1 (state not perturbed)
-//   full-perturbation  Eqs. 39-40: the perturbed lanes also start from the state perturbed along
-//                      its own derivative, iterated to a fixed point
+//   full-perturbation  Eqs. 39-40. They add the dependence of the contact stress t and the state
+//                      k that an evaluation starts from on the displacement. Here every
+//                      evaluation starts from the converged state of the last increment and
+//                      carries tau from its own last converged sub-increment (Eq. 24), so that
+//                      start state does not depend on the current displacement: J and G of the
+//                      start state vanish, the fixed point of Eqs. 39-40 is reached at once and
+//                      the columns equal Eq. 37's (docs/interface.md). An earlier version shifted
+//                      the start state by theta times the derivative of the END state, which
+//                      counted the dependence twice (columns about 2x too large).
 //   analytical         Eq. B3: rate stiffness of the model times d eps / d g (first term of B2)
 
 #include <algorithm>
@@ -35,7 +42,6 @@ struct ContactOptions {
     InterfaceSettings interface;
     ContactJacobian jacobian = ContactJacobian::perturbation;
     double perturbation = 1.4901161193847656e-8; // theta = sqrt(machine epsilon), Eq. 38
-    int full_perturbation_iterations = 4;        // Eqs. 39-40 fixed-point iterations
 };
 
 struct ContactReport {
@@ -45,6 +51,7 @@ struct ContactReport {
     double first_failed_residual = 0.0;
     double first_failed_cause = 0.0; // interface_failure code
     std::size_t band_clamped = 0;    // points whose d_s was held at its floor
+    double dropped_columns = 0.0;    // Jacobian columns zeroed because a perturbed lane failed
     std::size_t open = 0;
     double lanes = 0.0;         // evaluations of Algorithm 1 (base + perturbed)
     double subincrements = 0.0; // base lanes
@@ -149,17 +156,9 @@ public:
             ColumnStore fresh(n_cols, P * blocks);
             lanes_.swap(fresh);
         }
-        if (opt.jacobian == ContactJacobian::full_perturbation &&
-            state_derivative_.length() != P * blocks) {
-            ColumnStore g(ContactPoints<M>::n_state_cols, P * blocks);
-            state_derivative_.swap(g);
-        }
         const std::size_t chunk =
             ((opt.chunk_points + simd::lanes - 1) / simd::lanes) * simd::lanes;
         const std::size_t n_chunks = (P + chunk - 1) / chunk;
-        const int iterations = opt.jacobian == ContactJacobian::full_perturbation
-                                   ? opt.full_perturbation_iterations
-                                   : 1;
 
         auto run_block = [&](int k, std::size_t b, std::size_t e) {
             if (opt.simd) {
@@ -174,16 +173,11 @@ public:
                 for (std::size_t c = r.begin(); c != r.end(); ++c) {
                     const std::size_t b = c * chunk;
                     const std::size_t e = b + chunk < P ? b + chunk : P;
-                    gather(cp, opt, P, 0, ndim, b, e, false);
+                    gather(cp, opt, P, 0, ndim, b, e);
                     run_block(0, b, e);
-                    for (int it = 0; it < iterations && blocks > 1; ++it) {
-                        for (int k = 1; k < blocks; ++k) {
-                            gather(cp, opt, P, k, ndim, b, e, it > 0 && k != ref);
-                            run_block(k, b, e);
-                        }
-                        if (opt.jacobian == ContactJacobian::full_perturbation) {
-                            record_state_derivative(P, blocks, ref, b, e, opt.perturbation);
-                        }
+                    for (int k = 1; k < blocks; ++k) {
+                        gather(cp, opt, P, k, ndim, b, e);
+                        run_block(k, b, e);
                     }
                     scatter(cp, mp, opt, P, blocks, ref, b, e);
                 }
@@ -203,13 +197,13 @@ public:
             }
             rep.open += cp.output(contact_col::open)[i] > 0.5 ? 1 : 0;
             rep.band_clamped += cp.output(contact_col::band_clamped)[i] > 0.5 ? 1 : 0;
+            rep.dropped_columns += cp.output(contact_col::dropped_columns)[i];
             rep.subincrements += cp.output(contact_col::subincrements)[i];
             rep.newton_iterations += cp.output(contact_col::newton_iterations)[i];
             rep.constitutive_evaluations += cp.output(contact_col::evaluations)[i];
             rep.model_substeps += cp.output(contact_col::model_substeps)[i];
         }
-        rep.lanes =
-            static_cast<double>(cp.size()) * (1.0 + static_cast<double>(blocks - 1) * iterations);
+        rep.lanes = static_cast<double>(cp.size()) * blocks;
         return rep;
     }
 
@@ -227,7 +221,7 @@ private:
     }
 
     void gather(ContactPoints<M>& cp, const ContactOptions& opt, std::size_t P, int k, int ndim,
-                std::size_t b, std::size_t e, bool with_state_derivative) {
+                std::size_t b, std::size_t e) {
         using namespace detail::lane_col;
         for (std::size_t i = b; i < e; ++i) {
             const std::size_t l = k * P + i;
@@ -249,29 +243,7 @@ private:
             // Perturbed lanes follow their base's discretisation.
             lanes_.col(forced)[l] = k == 0 ? 0.0 : std::max(1.0, lanes_.col(subincrements)[i]);
             for (int c = 0; c < ContactPoints<M>::n_state_cols; ++c) {
-                double v = cp.committed(c)[i];
-                // Eqs. 39-40: the perturbed lane's start state moves along its derivative.
-                if (with_state_derivative) {
-                    v += opt.perturbation * state_derivative_.col(c)[l];
-                }
-                lanes_.col(state + c)[l] = v;
-            }
-        }
-    }
-
-    void record_state_derivative(std::size_t P, int blocks, int ref, std::size_t b, std::size_t e,
-                                 double theta) {
-        using namespace detail::lane_col;
-        for (int k = 1; k < blocks; ++k) {
-            if (k == ref) {
-                continue;
-            }
-            for (std::size_t i = b; i < e; ++i) {
-                for (int c = 0; c < ContactPoints<M>::n_state_cols; ++c) {
-                    state_derivative_.col(c)[k * P + i] =
-                        (lanes_.col(state + c)[k * P + i] - lanes_.col(state + c)[ref * P + i]) /
-                        theta;
-                }
+                lanes_.col(state + c)[l] = cp.committed(c)[i];
             }
         }
     }
@@ -290,14 +262,17 @@ private:
         const int ndim = cp.ndim();
         const int n_pert = blocks > 1 ? 2 * ndim : 0;
         for (std::size_t i = b; i < e; ++i) {
-            double st = lanes_.col(status)[i];
-            double why = lanes_.col(cause)[i];
+            // The point's status is its base lane's. A perturbed lane that fails while the base
+            // succeeded (e.g. a normal perturbation closing an open contact at t_N ~ 0) gives a
+            // zero column, counted, instead of failing the point.
+            const double st = lanes_.col(status)[i];
+            const double why = lanes_.col(cause)[i];
             double evals = 0.0;
+            double dropped = 0.0;
             for (int k = 0; k < blocks; ++k) {
                 evals += lanes_.col(evaluations)[k * P + i];
-                if (lanes_.col(status)[k * P + i] < st) {
-                    st = lanes_.col(status)[k * P + i];
-                    why = lanes_.col(cause)[k * P + i];
+                if (k > 0 && lanes_.col(status)[k * P + i] < -0.5) {
+                    dropped += 1.0;
                 }
             }
             for (int c = 0; c < ContactPoints<M>::n_state_cols; ++c) {
@@ -307,11 +282,15 @@ private:
                 cp.output(contact_col::traction + comp)[i] = lane_traction(i, comp);
             }
             if (n_pert > 0) {
+                const bool ref_ok = lanes_.col(status)[ref * P + i] > -0.5;
                 for (int k = 1; k <= n_pert; ++k) {
+                    const bool usable = ref_ok && lanes_.col(status)[k * P + i] > -0.5;
                     for (int comp = 0; comp < 3; ++comp) {
                         cp.output(contact_col::jacobian + comp + 3 * (k - 1))[i] =
-                            (lane_traction(k * P + i, comp) - lane_traction(ref * P + i, comp)) /
-                            opt.perturbation;
+                            usable ? (lane_traction(k * P + i, comp) -
+                                      lane_traction(ref * P + i, comp)) /
+                                         opt.perturbation
+                                   : 0.0;
                     }
                 }
             } else {
@@ -326,6 +305,7 @@ private:
             cp.output(contact_col::open)[i] = lanes_.col(open)[i];
             cp.output(contact_col::cause)[i] = why;
             cp.output(contact_col::band_clamped)[i] = lanes_.col(band_clamped)[i];
+            cp.output(contact_col::dropped_columns)[i] = dropped;
         }
     }
 
@@ -373,7 +353,6 @@ private:
     }
 
     ColumnStore lanes_;
-    ColumnStore state_derivative_;
 };
 
 } // namespace ifsim

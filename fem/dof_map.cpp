@@ -61,8 +61,8 @@ DofMap build_dof_map(const Mesh& mesh, const Stage& stage) {
             }
             if (tied[d]) {
                 throw std::invalid_argument(fmt::format(
-                    "node {} direction {} is in two equal-displacement sets ('{}' and '{}')",
-                    node, t.direction, tied[d]->node_set, t.node_set));
+                    "node {} direction {} is in two equal-displacement sets ('{}' and '{}')", node,
+                    t.direction, tied[d]->node_set, t.node_set));
             }
             tied[d] = &t;
             m.master_of[d] = master;

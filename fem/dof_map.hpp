@@ -15,10 +15,10 @@ namespace ifsim::fem {
 struct DofMap {
     int dim = 2;
     int n_equations = 0;
-    std::vector<int> equation;              // per DOF: equation, or -1 when prescribed
-    std::vector<int> prescribed;            // prescribed DOFs, ascending
-    std::vector<double> prescribed_change;  // their change over the stage
-    std::vector<int> master_of;             // per DOF: its master DOF (itself if none)
+    std::vector<int> equation;             // per DOF: equation, or -1 when prescribed
+    std::vector<int> prescribed;           // prescribed DOFs, ascending
+    std::vector<double> prescribed_change; // their change over the stage
+    std::vector<int> master_of;            // per DOF: its master DOF (itself if none)
 
     int n_dofs() const { return static_cast<int>(equation.size()); }
 };

@@ -51,7 +51,8 @@ void build(const Mesh& mesh, ElementGeometry& g) {
                 continue;
             }
             const auto p = static_cast<std::size_t>(e * g.nip + q);
-            std::copy(grad, grad + nen * D, g.dNdx.begin() + static_cast<std::ptrdiff_t>(p * nen * D));
+            std::copy(grad, grad + nen * D,
+                      g.dNdx.begin() + static_cast<std::ptrdiff_t>(p * nen * D));
             g.dV[p] = w;
             S::values(full.xi[q].data(), N);
             for (int a = 0; a < nen; ++a) {

@@ -175,7 +175,7 @@ void hourglass_vectors(const double* X, const double* bbar, double* gamma) {
             if constexpr (D == 2) {
                 h[a] = n[0] * n[1];
             } else {
-                h[a] = alpha == 0 ? n[1] * n[2]
+                h[a] = alpha == 0   ? n[1] * n[2]
                        : alpha == 1 ? n[0] * n[2]
                        : alpha == 2 ? n[0] * n[1]
                                     : n[0] * n[1] * n[2];

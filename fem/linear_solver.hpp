@@ -1,5 +1,7 @@
 #pragma once
-// Direct sparse solve of the reduced Newton system with SuiteSparse: UMFPACK (default) or KLU.
+// Direct sparse solve of the reduced Newton system with SuiteSparse: UMFPACK (default; fill-
+// reducing ordering: the better of AMD and METIS) or KLU (AMD; meant for very sparse,
+// circuit-like matrices, slower than UMFPACK on 3D meshes).
 // The symbolic analysis (fill-reducing ordering) is computed once per matrix pattern and
 // reused while the pattern id stays the same; the numeric factorisation runs every call of
 // factorise() (the tangent changes every Newton iteration).

@@ -84,8 +84,8 @@ void Mesh::validate() const {
         for (const FaceRef& f : faces) {
             if (f.element < 0 || f.element >= ne || f.local_face < 0 ||
                 f.local_face >= faces_per_element(type)) {
-                throw std::invalid_argument(fmt::format(
-                    "face set '{}' names face {} of element {}", name, f.local_face, f.element));
+                throw std::invalid_argument(fmt::format("face set '{}' names face {} of element {}",
+                                                        name, f.local_face, f.element));
             }
         }
     }

@@ -160,8 +160,8 @@ public:
 
     double shear_modulus(std::size_t i, const UpdateOptions& options) const override {
         const auto y = mp_.state(i);
-        const auto cols = M::template rate_stiffness<double>(params_, options.settings, y,
-                                                            voigt::zero<double>());
+        const auto cols =
+            M::template rate_stiffness<double>(params_, options.settings, y, voigt::zero<double>());
         return (cols[3][3] + cols[4][4] + cols[5][5]) / 6.0; // d sigma_12 / d eps_12 = 2G
     }
 
@@ -191,15 +191,14 @@ private:
     typename M::Params params_;
     MaterialPoints<M> mp_;
     std::optional<MaterialPoints<M>> lanes_; // base + perturbed lanes of every point
-    std::vector<double> delta_;            // perturbation of each point
-    std::vector<unsigned char> fell_back_; // per point: rate stiffness used
+    std::vector<double> delta_;              // perturbation of each point
+    std::vector<unsigned char> fell_back_;   // per point: rate stiffness used
     bool lanes_stale_ = true;
 };
 
 } // namespace
 
-std::unique_ptr<SetMaterial> make_set_material(const MaterialChoice& material,
-                                               std::size_t points) {
+std::unique_ptr<SetMaterial> make_set_material(const MaterialChoice& material, std::size_t points) {
     return std::visit(
         [&](const auto& params) -> std::unique_ptr<SetMaterial> {
             using M = typename model_of<std::decay_t<decltype(params)>>::type;

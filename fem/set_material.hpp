@@ -29,7 +29,7 @@ namespace ifsim::fem {
 
 struct TangentSettings {
     TangentKind kind = TangentKind::perturbation;
-    double perturbation = 1.0e-7;      // relative to the norm of the point's strain increment
+    double perturbation = 1.0e-7;       // relative to the norm of the point's strain increment
     double perturbation_floor = 1.0e-6; // strain norm used when the increment is smaller
     bool fixed_substeps = false;        // false: adaptive perturbed lanes (see above)
 };

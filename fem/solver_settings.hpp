@@ -55,7 +55,7 @@ struct SolverSettings {
     // First guess of the free DOFs: the previous converged increment of the stage scaled to the
     // new increment's length (false: zero), the prescribed DOFs at their new values.
     bool extrapolate = true;
-    int max_cuts = 6;                // halvings of one nominal increment before failing
+    int max_cuts = 6;               // halvings of one nominal increment before failing
     std::size_t element_grain = 64; // elements per task in the element loops
 };
 

@@ -59,7 +59,7 @@ struct StaticSolver::SetData {
     ElementSetMaterial spec;
     std::unique_ptr<SetMaterial> material;
     std::vector<int> elements;
-    std::vector<double> tangent;      // point * nc * nc
+    std::vector<double> tangent;        // point * nc * nc
     std::array<double*, 6> deps_cols{}; // stable: the increment columns are never swapped
 };
 
@@ -156,15 +156,14 @@ void StaticSolver::apply_k0() {
         for (std::size_t l = 0; l < s->elements.size(); ++l) {
             const int e = s->elements[l];
             for (int q = 0; q < geom_.nip; ++q) {
-                const double z = geom_.ip_coordinates[static_cast<std::size_t>(
-                    (e * geom_.nip + q) * D + D - 1)];
+                const double z =
+                    geom_.ip_coordinates[static_cast<std::size_t>((e * geom_.nip + q) * D + D - 1)];
                 const double sv = -(k.surcharge + k.unit_weight * (k.surface - z));
                 const double sh = k.k0 * sv;
                 const Sym<double> stress = D == 2 ? Sym<double>{sh, sv, sh, 0.0, 0.0, 0.0}
                                                   : Sym<double>{sh, sh, sv, 0.0, 0.0, 0.0};
-                s->material->set_stress(l * static_cast<std::size_t>(geom_.nip) +
-                                            static_cast<std::size_t>(q),
-                                        stress);
+                s->material->set_stress(
+                    l * static_cast<std::size_t>(geom_.nip) + static_cast<std::size_t>(q), stress);
                 ++counters_.k0_points;
             }
         }
@@ -185,9 +184,20 @@ void StaticSolver::hourglass_stiffness() {
 }
 
 void StaticSolver::begin_stage(const Stage& stage) {
-    stage_ = &stage;
+    DofMap next = build_dof_map(mesh_, stage); // throws before anything changes
+    for (const GroundSpring& g : stage.springs) {
+        if (g.direction < 0 || g.direction >= mesh_.dim()) {
+            throw std::invalid_argument(
+                fmt::format("spring direction {} on node set '{}' does not exist in {}D",
+                            g.direction, g.node_set, mesh_.dim()));
+        }
+        mesh_.node_set(g.node_set);
+    }
+    for (const FacePressure& p : stage.pressures) {
+        mesh_.face_set(p.face_set);
+    }
+    stage_ = stage;
     ++stage_count_;
-    DofMap next = build_dof_map(mesh_, stage);
     if (!system_ || next.equation != dofs_.equation) {
         system_ = std::make_unique<SparseSystem>(mesh_, next);
         ++counters_.patterns_built;
@@ -199,11 +209,6 @@ void StaticSolver::begin_stage(const Stage& stage) {
 
     std::vector<Spring> springs;
     for (const GroundSpring& g : stage.springs) {
-        if (g.direction < 0 || g.direction >= D) {
-            throw std::invalid_argument(fmt::format(
-                "spring direction {} on node set '{}' does not exist in {}D", g.direction,
-                g.node_set, D));
-        }
         const auto& nodes = mesh_.node_set(g.node_set);
         Spring sp;
         sp.key = fmt::format("{}#{}", g.node_set, g.direction);
@@ -308,12 +313,12 @@ bool StaticSolver::update_materials(bool with_tangent, std::string& error) {
             if (rep.failed > 0) {
                 counters_.failed_point_updates += static_cast<long>(rep.failed);
                 const auto local = static_cast<int>(rep.first_failed) / geom_.nip;
-                error = fmt::format(
-                    "{} material point(s) of set '{}' ({}) failed, first at element {} "
-                    "integration point {}",
-                    rep.failed, s->spec.element_set, s->material->model_name(),
-                    s->elements[static_cast<std::size_t>(local)],
-                    static_cast<int>(rep.first_failed) % geom_.nip);
+                error =
+                    fmt::format("{} material point(s) of set '{}' ({}) failed, first at element {} "
+                                "integration point {}",
+                                rep.failed, s->spec.element_set, s->material->model_name(),
+                                s->elements[static_cast<std::size_t>(local)],
+                                static_cast<int>(rep.first_failed) % geom_.nip);
                 return false;
             }
         }
@@ -334,7 +339,9 @@ void StaticSolver::assemble_d(std::span<const double> du, bool with_tangent) {
     using Tr = ElementTraits<D>;
     constexpr int nc = Tr::ncomp;
     const bool reduced = settings_.integration == Integration::reduced;
-    std::vector<std::array<const double*, 6>> stress(sets_.size());
+    // Trial columns move on every commit (swap): look them up once per pass.
+    auto& stress = stress_cols_;
+    stress.resize(sets_.size());
     for (std::size_t k = 0; k < sets_.size(); ++k) {
         for (int j = 0; j < 6; ++j) {
             stress[k][static_cast<std::size_t>(j)] = sets_[k]->material->trial(j);
@@ -364,8 +371,8 @@ void StaticSolver::assemble_d(std::span<const double> du, bool with_tangent) {
                 const double* tangent = sets_[set]->tangent.data();
                 for (int q = 0; q < geom_.nip; ++q) {
                     const auto p = static_cast<std::size_t>(local * geom_.nip + q);
-                    add_tangent<D>(geom_.gradients(e, q), tangent + p * nc * nc,
-                                   geom_.weight(e, q), K);
+                    add_tangent<D>(geom_.gradients(e, q), tangent + p * nc * nc, geom_.weight(e, q),
+                                   K);
                 }
                 if (reduced) {
                     add_hourglass_tangent<D>(geom_.hourglass_gamma.data() +
@@ -409,6 +416,57 @@ void StaticSolver::assemble(std::span<const double> du, bool with_tangent) {
     }
 }
 
+bool StaticSolver::residual_pass(double t, std::span<const double> du, std::string& error) {
+    {
+        PhaseTimer timer(timers_.element);
+        compute_strains(du);
+        if (!update_materials(false, error)) {
+            return false;
+        }
+    }
+    {
+        PhaseTimer timer(timers_.assembly);
+        assemble(du, false);
+        for (const Spring& sp : springs_) {
+            for (std::size_t k = 0; k < sp.dofs.size(); ++k) {
+                const auto d = static_cast<std::size_t>(sp.dofs[k]);
+                f_int_[d] += sp.stiffness * (u_[d] + du[d] - sp.reference[k]);
+            }
+        }
+    }
+    external_force(t, f_ext_);
+    PhaseTimer timer(timers_.assembly);
+    std::fill(residual_.begin(), residual_.end(), 0.0);
+    for (std::size_t d = 0; d < u_.size(); ++d) {
+        const int eq = dofs_.equation[d];
+        if (eq >= 0) {
+            residual_[static_cast<std::size_t>(eq)] += f_ext_[d] - f_int_[d];
+        }
+    }
+    reference_force_ = std::max({norm2(f_ext_), norm2(f_int_), settings_.reference_force_floor});
+    return true;
+}
+
+// Needs the residual pass at the same increment just before (the perturbation lanes start from
+// its strain increments and compare with its substep counts).
+void StaticSolver::tangent_pass(std::span<const double> du) {
+    {
+        PhaseTimer timer(timers_.element);
+        std::string unused;
+        update_materials(true, unused);
+    }
+    PhaseTimer timer(timers_.assembly);
+    assemble(du, true);
+    for (const Spring& sp : springs_) {
+        for (int d : sp.dofs) {
+            const int eq = dofs_.equation[static_cast<std::size_t>(d)];
+            if (eq >= 0) {
+                system_->add_diagonal(eq, sp.stiffness);
+            }
+        }
+    }
+}
+
 bool StaticSolver::evaluate(double t, std::span<const double> increment, bool with_tangent,
                             std::string& error) {
     if (!stage_) {
@@ -419,52 +477,11 @@ bool StaticSolver::evaluate(double t, std::span<const double> increment, bool wi
         error = fmt::format("increment of length {} for {} DOFs", increment.size(), u_.size());
         return false;
     }
-    {
-        PhaseTimer timer(timers_.element);
-        compute_strains(increment);
-        if (!update_materials(false, error)) {
-            return false;
-        }
+    if (!residual_pass(t, increment, error)) {
+        return false;
     }
-    {
-        PhaseTimer timer(timers_.assembly);
-        assemble(increment, false);
-        for (const Spring& sp : springs_) {
-            for (std::size_t k = 0; k < sp.dofs.size(); ++k) {
-                const auto d = static_cast<std::size_t>(sp.dofs[k]);
-                f_int_[d] += sp.stiffness * (u_[d] + increment[d] - sp.reference[k]);
-            }
-        }
-    }
-    external_force(t, f_ext_);
-    {
-        PhaseTimer timer(timers_.assembly);
-        std::fill(residual_.begin(), residual_.end(), 0.0);
-        for (std::size_t d = 0; d < u_.size(); ++d) {
-            const int eq = dofs_.equation[d];
-            if (eq >= 0) {
-                residual_[static_cast<std::size_t>(eq)] += f_ext_[d] - f_int_[d];
-            }
-        }
-        reference_force_ =
-            std::max({norm2(f_ext_), norm2(f_int_), settings_.reference_force_floor});
-    }
-    if (!with_tangent) {
-        return true;
-    }
-    {
-        PhaseTimer timer(timers_.element);
-        update_materials(true, error);
-    }
-    PhaseTimer timer(timers_.assembly);
-    assemble(increment, true);
-    for (const Spring& sp : springs_) {
-        for (int d : sp.dofs) {
-            const int eq = dofs_.equation[static_cast<std::size_t>(d)];
-            if (eq >= 0) {
-                system_->add_diagonal(eq, sp.stiffness);
-            }
-        }
+    if (with_tangent) {
+        tangent_pass(increment);
     }
     return true;
 }
@@ -488,7 +505,7 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
     const double tol_u = settings_.displacement_tolerance;
     double last_correction = std::numeric_limits<double>::infinity();
     for (int it = 0;; ++it) {
-        if (!evaluate(t_end, du_, false, error)) {
+        if (!residual_pass(t_end, du_, error)) {
             return false;
         }
         const double rel = norm2(residual_) / reference_force_;
@@ -506,23 +523,7 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
                                 settings_.max_iterations, rel, last_correction);
             return false;
         }
-        // Tangent at the state just evaluated (the base lanes' substeps are still in place).
-        {
-            PhaseTimer timer(timers_.element);
-            update_materials(true, error);
-        }
-        {
-            PhaseTimer timer(timers_.assembly);
-            assemble(du_, true);
-            for (const Spring& sp : springs_) {
-                for (int d : sp.dofs) {
-                    const int eq = dofs_.equation[static_cast<std::size_t>(d)];
-                    if (eq >= 0) {
-                        system_->add_diagonal(eq, sp.stiffness);
-                    }
-                }
-            }
-        }
+        tangent_pass(du_);
         {
             PhaseTimer timer(timers_.solve);
             if (!linear_.factorise(system_->matrix(), system_->pattern_id(), error) ||

@@ -15,9 +15,11 @@
 // committed and the increment is halved, up to max_cuts times, then the stage fails with a
 // reason naming stage, step and pseudo-time.
 
+#include <array>
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -33,15 +35,15 @@
 namespace ifsim::fem {
 
 struct SolverCounters {
-    long increments = 0;        // converged (committed) increments
-    long cuts = 0;              // increments halved after a failure
-    long newton_iterations = 0; // linear solves of the Newton iteration
-    long constitutive_evaluations = 0; // point updates incl. perturbation lanes
-    long tangent_evaluations = 0;      // of which perturbation lanes
-    long tangent_fallbacks = 0;        // points whose perturbation lanes failed (rate used)
-    long failed_point_updates = 0;     // base updates with status failed
-    long patterns_built = 0;           // sparse patterns (one per distinct DOF map)
-    long gravity_load_builds = 0;      // unit gravity vectors integrated
+    long increments = 0;                // converged (committed) increments
+    long cuts = 0;                      // increments halved after a failure
+    long newton_iterations = 0;         // linear solves of the Newton iteration
+    long constitutive_evaluations = 0;  // point updates incl. perturbation lanes
+    long tangent_evaluations = 0;       // of which perturbation lanes
+    long tangent_fallbacks = 0;         // points whose perturbation lanes failed (rate used)
+    long failed_point_updates = 0;      // base updates with status failed
+    long patterns_built = 0;            // sparse patterns (one per distinct DOF map)
+    long gravity_load_builds = 0;       // unit gravity vectors integrated
     long gravity_load_applications = 0; // evaluations with gravity in the external force
     long pressure_load_builds = 0;
     long k0_points = 0; // integration points given a K0 initial stress
@@ -62,9 +64,9 @@ struct IncrementInfo {
     int step = 0;  // nominal step of the stage (1-based)
     double t_begin = 0.0;
     double t_end = 0.0;
-    int cut_depth = 0;                 // halvings of the nominal step for this increment
-    std::vector<double> residuals;     // relative residual at each evaluation
-    std::vector<double> corrections;   // relative correction of each Newton iteration
+    int cut_depth = 0;               // halvings of the nominal step for this increment
+    std::vector<double> residuals;   // relative residual at each evaluation
+    std::vector<double> corrections; // relative correction of each Newton iteration
 };
 
 struct StageResult {
@@ -119,6 +121,8 @@ private:
     };
 
     bool solve_increment(double t_begin, double t_end, IncrementInfo& info, std::string& error);
+    bool residual_pass(double t, std::span<const double> du, std::string& error);
+    void tangent_pass(std::span<const double> du);
     void compute_strains(std::span<const double> du);
     bool update_materials(bool with_tangent, std::string& error);
     void assemble(std::span<const double> du, bool with_tangent);
@@ -136,10 +140,11 @@ private:
     std::vector<std::unique_ptr<SetData>> sets_;
     std::vector<int> set_of_element_;
     std::vector<int> local_of_element_;
-    std::vector<double> hourglass_k_; // per element (reduced integration)
+    std::vector<double> hourglass_k_;                       // per element (reduced integration)
+    std::vector<std::array<const double*, 6>> stress_cols_; // per set: trial stress columns
 
     // Stage data.
-    const Stage* stage_ = nullptr;
+    std::optional<Stage> stage_; // the running stage (a copy)
     int stage_count_ = 0;
     DofMap dofs_;
     std::unique_ptr<SparseSystem> system_;
@@ -150,16 +155,16 @@ private:
     std::map<std::string, std::vector<double>> pressure_unit_;
 
     // Displacements and forces.
-    std::vector<double> u_;              // committed
-    std::vector<double> du_;             // trial increment
-    std::vector<double> du_last_;        // last converged increment of the stage
-    double dt_last_ = 0.0;               // its pseudo-time length (0: none yet)
-    std::vector<double> f_int_;          // trial internal force, full
+    std::vector<double> u_;       // committed
+    std::vector<double> du_;      // trial increment
+    std::vector<double> du_last_; // last converged increment of the stage
+    double dt_last_ = 0.0;        // its pseudo-time length (0: none yet)
+    std::vector<double> f_int_;   // trial internal force, full
     std::vector<double> f_int_committed_;
     std::vector<double> f_ext_;
     std::vector<double> f_ext_committed_;
-    std::vector<double> residual_;       // reduced
-    std::vector<double> correction_;     // reduced
+    std::vector<double> residual_;   // reduced
+    std::vector<double> correction_; // reduced
     double reference_force_ = 0.0;
 
     mutable SolverCounters counters_;

@@ -173,7 +173,9 @@ void interface_update(const typename M::Params& mp, const InterfaceSettings& s,
     const Mask band_ok = s.clamp_band ? Mask(true) : !below;
     const T d_s = simd::select(below, d_s_floor, d_s_eq26);
     // Contact open (no compression to carry): the point keeps its state and transmits nothing.
-    const Mask open = in.t_N > -s.model.min_pressure;
+    // The threshold sits above the models' pressure floor so that an almost open contact is
+    // not driven into the floor by the in-plane stresses (K0 < 1 lowers p below t_N).
+    const Mask open = in.t_N > -s.open_threshold;
     const Mask run = finite_in && band_ok && !open;
 
     // Eq. 25: tan(delta gamma) = delta g_T / d_s.
@@ -182,19 +184,6 @@ void interface_update(const typename M::Params& mp, const InterfaceSettings& s,
     const T dgam2 =
         (s.ndim == 2) ? T(0.0) : simd::select(run, simd::atan(in.dg2 / safe_ds), T(0.0));
     const T total = simd::max(simd::abs(dgam1), simd::abs(dgam2));
-
-    // Sub-increment size as a fraction of the increment. Fixed: n_sub = ceil(total / max).
-    const Mask forced = in.forced_subincrements > 0.5;
-    const T n_fixed = simd::select(forced, in.forced_subincrements,
-                                   simd::max(simd::ceil(total / s.max_subincrement), T(1.0)));
-    T h = 1.0 / n_fixed;
-    const bool adaptive = s.adaptive && !simd::all(forced);
-    if (adaptive) {
-        // Start from the last accepted size (in units of max_subincrement) or the paper's size.
-        const T last = simd::select(st.last_subincrement > 0.0, st.last_subincrement, T(1.0));
-        const T frac = last * s.max_subincrement / simd::max(total, T(1.0e-300));
-        h = simd::select(forced, h, simd::min(T(1.0), simd::select(total > 0.0, frac, T(1.0))));
-    }
 
     // Targets of Eqs. 18-20 are met at the end of the increment; the sub-increments in between
     // follow a straight path from the start values (sigma_N, sigma_p1, sigma_p2 of the converged
@@ -209,6 +198,32 @@ void interface_update(const typename M::Params& mp, const InterfaceSettings& s,
         }
         return tg;
     };
+    // Sub-increments needed for the change of the normal targets: at most max_normal_change of
+    // the stress per sub-increment (a change of t_N without shear would otherwise be one step).
+    T dtarget = T(0.0);
+    T tnorm = T(0.0);
+    for (int c = 0; c < k; ++c) {
+        dtarget = simd::max(dtarget, simd::abs(target_end[c] - target_start[c]));
+        tnorm += target_end[c] * target_end[c];
+    }
+    tnorm = simd::max(simd::sqrt(tnorm), T(1.0));
+    const T n_normal =
+        simd::select(run, simd::ceil(dtarget / (s.max_normal_change * tnorm)), T(1.0));
+
+    // Sub-increment size as a fraction of the increment. Fixed: n_sub = ceil(total / max).
+    const Mask forced = in.forced_subincrements > 0.5;
+    const T n_fixed = simd::select(
+        forced, in.forced_subincrements,
+        simd::max(simd::max(simd::ceil(total / s.max_subincrement), n_normal), T(1.0)));
+    T h = 1.0 / n_fixed;
+    const bool adaptive = s.adaptive && !simd::all(forced);
+    if (adaptive) {
+        // Start from the last accepted size (in units of max_subincrement) or the paper's size.
+        const T last = simd::select(st.last_subincrement > 0.0, st.last_subincrement, T(1.0));
+        const T frac = last * s.max_subincrement / simd::max(total, T(1.0e-300));
+        const T h0 = simd::min(T(1.0), simd::select(total > 0.0, frac, T(1.0)));
+        h = simd::select(forced, h, simd::min(h0, 1.0 / simd::max(n_normal, T(1.0))));
+    }
 
     InterfaceState<T, NS> cur = st;
     T t = T(0.0);
@@ -274,6 +289,15 @@ void interface_update(const typename M::Params& mp, const InterfaceSettings& s,
             fail(active && full.model_failed, interface_failure::model);
             fail(active && !full.converged, interface_failure::newton);
             active = active && full.converged;
+        }
+        // Eq. 26 within the increment: a sub-increment that takes d_s below its floor ends the
+        // lane (band collapse) unless the floor is to be held.
+        if (!s.clamp_band) {
+            const Mask collapses =
+                accept && !(s.shear_band_thickness * (1.0 + cur.eps_n + x_new[0]) > d_s_floor);
+            fail(collapses, interface_failure::band_collapse);
+            accept = accept && !collapses;
+            active = active && !collapses;
         }
         // Algorithm 1 lines 11-13: save strain, state and stress of the converged sub-increment.
         y_new[5] = T(0.0); // Eq. 17: no t1-t2 shear in the interface

@@ -42,6 +42,10 @@ struct InterfaceSettings {
     // Eq. 26 lets d_s = d_s0 (1 + eps_N) shrink towards zero in long compaction. Below this
     // fraction of d_s0 the point stops with status failed (a defined stop, never a NaN).
     double min_band_fraction = 0.05;
+    // Largest change of the normal targets (t_N, s_p) per sub-increment, relative to their size.
+    double max_normal_change = 0.02;
+    // Contact counts as open (no traction, state kept) while t_N > -open_threshold (kPa).
+    double open_threshold = 0.01;
     // true: instead of stopping, hold d_s at min_band_fraction * d_s0 and go on (counted in
     // InterfaceStats::band_clamped). The results past that point rest on an assumed thickness.
     bool clamp_band = false;

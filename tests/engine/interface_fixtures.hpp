@@ -3,8 +3,8 @@
 // a roughness factor, interface start states (paper §5.1: D_r0 = 0.88, K0 = 0.5, intergranular
 // strain mobilised in the shearing direction), a tilted local frame, and the direct evaluation
 // of Algorithm 1 for one point. Kernel headers only, so both test folders can use it; the
-// helpers for the point-level interface test (engine library) are compiled only where
-// IFSIM_TEST_INTERFACE_DRIVER is defined before the include.
+// engine helpers (Jacobian columns against central differences, the point-level interface test)
+// are compiled only where IFSIM_TEST_ENGINE_HELPERS is defined before the include.
 
 #include <algorithm>
 #include <array>
@@ -132,12 +132,149 @@ inline bool state_is_finite(const auto& y) {
 
 } // namespace ifsim::test
 
-#ifdef IFSIM_TEST_INTERFACE_DRIVER
+#ifdef IFSIM_TEST_ENGINE_HELPERS
 #include <gtest/gtest.h>
 
+#include <string>
+
+#include "engine/contact_update.hpp"
 #include "engine/interface_test.hpp"
 
 namespace ifsim::test {
+
+// --- Jacobian columns of the contact engine (the tolerances are explained in
+// test_contact_jacobian.cpp) -----------------------------------------------------------------
+
+struct ColumnErrors {
+    double eq37 = 0.0;    // Eq. 37 columns vs central differences, tangential rows
+    double central = 0.0; // (J_slave - J_master) / 2 vs central differences, tangential rows
+    double normal = 0.0;  // normal row vs k_N n (exact for a penalty)
+    bool ok = true;
+};
+
+// Two points in one engine call (varied increments and targets, the same tilted frame), each
+// compared with its own central differences. With reference = false only the exact penalty row
+// is checked (schemes that are not the derivative of the update).
+template <class M>
+ColumnErrors jacobian_errors(const typename M::Params& mp, const StateVec<double, M::n_state>& y,
+                             int ndim, const ContactOptions& opt, bool reference = true) {
+    const double h = 1.0e-7;
+    const Frame fr = tilted_frame(ndim);
+    std::vector<PointInput> inputs(2);
+    for (int i = 0; i < 2; ++i) {
+        inputs[i].dg1 = 1.0e-5 * (1.0 + 0.3 * i);
+        inputs[i].dg2 = ndim == 3 ? 4.0e-6 * (1.0 - 0.7 * i) : 0.0;
+        inputs[i].t_N = -100.0 - 3.0 * i;
+        inputs[i].s_p1 = -52.0 + i;
+        inputs[i].s_p2 = -47.0 - i;
+    }
+    ContactPoints<M> cp(inputs.size(), ndim);
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+        cp.set_state(i, y);
+        cp.set_frame(i, fr.n.data(), fr.t1.data(), fr.t2.data());
+        cp.input(contact_col::t_N)[i] = inputs[i].t_N;
+        cp.input(contact_col::k_N)[i] = inputs[i].k_N;
+        cp.input(contact_col::dg1)[i] = inputs[i].dg1;
+        cp.input(contact_col::dg2)[i] = inputs[i].dg2;
+        cp.input(contact_col::s_p1)[i] = inputs[i].s_p1;
+        cp.input(contact_col::s_p2)[i] = inputs[i].s_p2;
+    }
+    ContactEngine<M> engine;
+    const ContactReport rep = engine.update(cp, mp, opt);
+    ColumnErrors err;
+    err.ok = rep.ok();
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+        const double n_sub = cp.output(contact_col::subincrements)[i];
+        double fd[6][3];
+        double scale = 0.0;
+        for (int c = 0; c < 2 * ndim && reference; ++c) {
+            const int d = c % ndim;
+            const double sign = c < ndim ? 1.0 : -1.0; // slave +u: +g; master +u: -g
+            std::array<double, 3> gp{0.0, 0.0, 0.0}, gm{0.0, 0.0, 0.0};
+            gp[d] = sign * h;
+            gm[d] = -sign * h;
+            const auto rp =
+                direct_update<M>(mp, opt.interface, y, shifted_input(inputs[i], fr, gp, n_sub));
+            const auto rm =
+                direct_update<M>(mp, opt.interface, y, shifted_input(inputs[i], fr, gm, n_sub));
+            err.ok = err.ok && rp.stats.status > 0.5 && rm.stats.status > 0.5;
+            const auto tp = rp.traction();
+            const auto tm = rm.traction();
+            for (int comp = 0; comp < 3; ++comp) {
+                fd[c][comp] = (tp[comp] - tm[comp]) / (2.0 * h);
+                if (comp > 0) {
+                    scale = std::max(scale, std::abs(fd[c][comp]));
+                }
+            }
+        }
+        for (int c = 0; c < 2 * ndim; ++c) {
+            const int d = c % ndim;
+            const double sign = c < ndim ? 1.0 : -1.0;
+            const double normal = sign * inputs[i].k_N * fr.n[d];
+            err.normal = std::max(err.normal, std::abs(cp.jacobian(i, 0, c) - normal) /
+                                                  (inputs[i].k_N * 1.0e-3 + std::abs(normal)));
+            for (int comp = 1; comp < 3; ++comp) {
+                EXPECT_TRUE(std::isfinite(cp.jacobian(i, comp, c)));
+                if (!reference) {
+                    continue;
+                }
+                if (ndim == 2 && comp == 2) {
+                    EXPECT_EQ(cp.jacobian(i, comp, c), 0.0); // plane strain: no tau2
+                    continue;
+                }
+                const double ref = std::max(std::abs(fd[c][comp]), 0.01 * scale);
+                err.eq37 =
+                    std::max(err.eq37, std::abs(cp.jacobian(i, comp, c) - fd[c][comp]) / ref);
+                if (c < ndim) {
+                    const double half =
+                        0.5 * (cp.jacobian(i, comp, c) - cp.jacobian(i, comp, c + ndim));
+                    err.central = std::max(err.central, std::abs(half - fd[c][comp]) / ref);
+                }
+            }
+        }
+    }
+    return err;
+}
+
+inline ContactOptions jacobian_options(InterfaceFormulation f, int ndim, bool adaptive) {
+    ContactOptions opt;
+    opt.interface.formulation = f;
+    opt.interface.ndim = ndim;
+    opt.interface.adaptive = adaptive;
+    if (adaptive) {
+        // Smooth enough to difference (see the note at the top).
+        opt.interface.newton_jacobian = NewtonJacobian::perturbation;
+        opt.interface.model.tolerance = 1.0e-5;
+    }
+    return opt;
+}
+
+inline std::string jacobian_label(InterfaceFormulation f, int ndim, bool adaptive) {
+    return std::string(f == InterfaceFormulation::novel ? "novel" : "stutz") + " ndim " +
+           std::to_string(ndim) + (adaptive ? " adaptive" : " fixed");
+}
+
+constexpr double kEq37Tol = 2.0e-2;
+constexpr double kCentralTol = 1.0e-3;
+constexpr double kNormalTol = 1.0e-9;
+
+template <class M>
+void check_all_columns(const typename M::Params& mp, const StateVec<double, M::n_state>& y) {
+    for (const auto f : {InterfaceFormulation::novel, InterfaceFormulation::stutz}) {
+        for (const int ndim : {2, 3}) {
+            for (const bool adaptive : {false, true}) {
+                SCOPED_TRACE(jacobian_label(f, ndim, adaptive));
+                const auto e = jacobian_errors<M>(mp, y, ndim, jacobian_options(f, ndim, adaptive));
+                ASSERT_TRUE(e.ok);
+                EXPECT_LT(e.eq37, kEq37Tol);
+                EXPECT_LT(e.normal, kNormalTol);
+                EXPECT_LT(e.central, kCentralTol);
+            }
+        }
+    }
+}
+
+// --- The point-level interface test --------------------------------------------------------
 
 // §5.1: L4C with roughness kappa as interface, the same sand as a continuum (kappa = 1) as the
 // sample, both from t_N0 with K0 = 0.5, e0 from D_r0 = 0.88, h mobilised along t1; d_s = 3 mm,
@@ -177,4 +314,4 @@ inline void expect_shear_strain_follows_slip(const std::vector<InterfaceRow>& ro
 }
 
 } // namespace ifsim::test
-#endif // IFSIM_TEST_INTERFACE_DRIVER
+#endif // IFSIM_TEST_ENGINE_HELPERS

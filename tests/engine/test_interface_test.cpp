@@ -9,7 +9,7 @@
 #include <cmath>
 #include <vector>
 
-#define IFSIM_TEST_INTERFACE_DRIVER
+#define IFSIM_TEST_ENGINE_HELPERS
 #include "tests/engine/interface_fixtures.hpp"
 
 using namespace ifsim;

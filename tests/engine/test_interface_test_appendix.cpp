@@ -11,7 +11,7 @@
 #include <cmath>
 #include <cstdio>
 
-#define IFSIM_TEST_INTERFACE_DRIVER
+#define IFSIM_TEST_ENGINE_HELPERS
 #include "tests/engine/interface_fixtures.hpp"
 
 using namespace ifsim;
@@ -45,14 +45,16 @@ TEST(InterfaceTestAppendixC, IdenticalMaterialsKeepInPlaneStrainsZero) {
         EXPECT_NEAR(ra.t_t1, rb.t_t1, 0.02);
         EXPECT_NEAR(ra.u_n, rb.u_n, 1.0e-7);
         EXPECT_NEAR(rb.s_p1, rb.sample_s22, 0.05);
-        // Same material, same stress, same strain path: the interface's shear strain equals the
-        // sample's (2 eps_12 = (u_t - slip) / H). They differ by the sample's integration error
-        // (one adaptive Heun update per step, tolerance 1e-3 of |sigma|, against the
-        // interface's 22 sub-increments): measured 0.33 % at step 1, 0.2 % at 1 mm.
+        // Same material, same stress: the interface's shear strain is the sample's
+        // (2 eps_12 = (u_t - slip) / H) up to the step size. Within a step Algorithm 1 moves the
+        // in-plane targets along a straight line while the sample's sigma_22 follows its own
+        // curve, so the two strain paths differ at second order in the step: measured -0.33 %
+        // (20 steps per mm), -0.077 % (40), -0.020 % (80) up to 0.9 mm; -0.87 % at 1 mm with 20
+        // steps, where the tangent stiffness drops.
         if (k > 0) {
             const double sample_gamma = (ra.u_t1 - ra.slip1) / novel.height;
-            std::printf("gamma %zu rel %.3e\n", k, (ra.gamma1 - sample_gamma) / sample_gamma);
-            EXPECT_NEAR(ra.gamma1, sample_gamma, 1.0e-2 * sample_gamma);
+            const double bound = ra.u_t1 <= 0.9e-3 ? 1.0e-2 : 2.0e-2;
+            EXPECT_NEAR(ra.gamma1, sample_gamma, bound * sample_gamma);
         }
     }
     EXPECT_GT(a.rows.back().t_t1, 70.0);
@@ -60,9 +62,9 @@ TEST(InterfaceTestAppendixC, IdenticalMaterialsKeepInPlaneStrainsZero) {
 
 // Appendix B: the first 20 steps of the monotonic CNL test (kappa = 0.9, through the peak at
 // 0.45 mm). Counted outer Newton iterations (measured, novel formulation; the counts do not
-// depend on the sub-increment size between 5e-5 and 4e-4):
+// depend on the sub-increment size between 5e-5 and 4e-4, so the coarsest is used):
 //   Eq. 37 perturbation        33  (3 2 2 2 2 2 2 2 2 4, then 1 per step)
-//   Eqs. 39-40 full perturb.   71  (12 7 6 6 6 6 5 3 5 5, then 1 per step)
+//   Eqs. 39-40 full perturb.   70  (12 7 6 6 6 6 5 3 5 4, then 1 per step)
 //   Eq. B3 analytical         347  and 3 step cuts (118 iterations in step 9 alone)
 // The paper finds the full scheme slightly better than Eq. 37; here it is worse, because its
 // columns are about twice the derivative of the update (test_contact_jacobian.cpp).
@@ -74,7 +76,7 @@ TEST(InterfaceTestAppendixB, PerturbationNeedsFewerIterationsThanAnalytical) {
                                         ContactJacobian::analytical};
     for (int s = 0; s < 3; ++s) {
         InterfaceTestSpec spec = l4c_spec(InterfaceFormulation::novel);
-        spec.contact.interface.max_subincrement = 2.0e-4;
+        spec.contact.interface.max_subincrement = 4.0e-4;
         spec.contact.jacobian = schemes[s];
         spec.stages = {{20, 1.0e-3, 0.0}};
         const DriverRun r = run_driver(spec);

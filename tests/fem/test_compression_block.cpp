@@ -39,8 +39,8 @@ TEST(CompressionBlock, OedometricByTopDisplacement) {
         StaticSolver solver(m, {material(LinearElasticParams{E, nu}, elastic_state())}, settings);
         Stage st;
         st.steps = 3;
-        st.displacements = {{"left", 0, 0.0},  {"right", 0, 0.0}, {"front", 1, 0.0},
-                            {"back", 1, 0.0},  {"bottom", 2, 0.0}, {"top", 2, -delta}};
+        st.displacements = {{"left", 0, 0.0}, {"right", 0, 0.0},  {"front", 1, 0.0},
+                            {"back", 1, 0.0}, {"bottom", 2, 0.0}, {"top", 2, -delta}};
         const auto res = solver.run_stage(st);
         ASSERT_TRUE(res.ok) << res.reason;
         EXPECT_EQ(res.increments, 3);

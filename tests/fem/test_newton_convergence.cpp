@@ -69,10 +69,11 @@ TEST(NewtonConvergence, LinearElasticityConvergesInOneIteration) {
         s.extrapolate = false;
         StaticSolver solver(m, {material(LinearElasticParams{2e4, 0.3}, elastic_state())}, s);
         std::vector<IncrementInfo> infos;
-        const auto res = solver.run_stage(shear_under_pressure(dim, 3), [&](const IncrementInfo& i) {
-            infos.push_back(i);
-            print(dim == 2 ? "linear elastic 2D" : "linear elastic 3D", i);
-        });
+        const auto res =
+            solver.run_stage(shear_under_pressure(dim, 3), [&](const IncrementInfo& i) {
+                infos.push_back(i);
+                print(dim == 2 ? "linear elastic 2D" : "linear elastic 3D", i);
+            });
         ASSERT_TRUE(res.ok) << res.reason;
         ASSERT_EQ(infos.size(), 3u);
         for (const auto& info : infos) {

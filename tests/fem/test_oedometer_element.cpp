@@ -50,8 +50,8 @@ void compare_prescribed(int dim) {
     StaticSolver solver(m, {material(karlsruhe(), y0)}, {});
     Stage st;
     st.steps = steps;
-    st.displacements = {{"left", 0, 0.0}, {"right", 0, 0.0}, {"bottom", v, 0.0},
-                        {"top", v, -strain}};
+    st.displacements = {
+        {"left", 0, 0.0}, {"right", 0, 0.0}, {"bottom", v, 0.0}, {"top", v, -strain}};
     if (dim == 3) {
         st.displacements.push_back({"front", 1, 0.0});
         st.displacements.push_back({"back", 1, 0.0});
@@ -110,8 +110,11 @@ TEST(OedometerElement, TopPressureOnRigidPlateMatchesStressControlledElementTest
     StaticSolver solver(m, {material(karlsruhe(), y0)}, settings);
     Stage st;
     st.steps = steps;
-    st.displacements = {{"left", 0, 0.0},  {"right", 0, 0.0}, {"front", 1, 0.0},
-                        {"back", 1, 0.0},  {"bottom", 2, 0.0}};
+    st.displacements = {{"left", 0, 0.0},
+                        {"right", 0, 0.0},
+                        {"front", 1, 0.0},
+                        {"back", 1, 0.0},
+                        {"bottom", 2, 0.0}};
     st.equal_displacements = {{"top", 2}};
     st.pressures = {{"top", 100.0, 400.0}}; // in equilibrium with the initial -100 kPa
     Recorder rec{&solver, {}, {}, 0};
@@ -137,7 +140,6 @@ TEST(OedometerElement, TopPressureOnRigidPlateMatchesStressControlledElementTest
                     << "increment " << k + 1 << " component " << i;
             }
         }
-        EXPECT_NEAR(rec.states[static_cast<std::size_t>(k)][0][2], -100.0 - 30.0 * (k + 1),
-                    1e-8);
+        EXPECT_NEAR(rec.states[static_cast<std::size_t>(k)][0][2], -100.0 - 30.0 * (k + 1), 1e-8);
     }
 }

@@ -25,8 +25,8 @@ struct Field {
     std::vector<double> at(const Mesh& m) const {
         const int D = m.dim();
         std::vector<double> u(static_cast<std::size_t>(m.n_nodes() * D), 0.0);
-        const double T[3][3] = {{eps[0], eps[3], eps[4]}, {eps[3], eps[1], eps[5]},
-                                {eps[4], eps[5], eps[2]}};
+        const double T[3][3] = {
+            {eps[0], eps[3], eps[4]}, {eps[3], eps[1], eps[5]}, {eps[4], eps[5], eps[2]}};
         for (int n = 0; n < m.n_nodes(); ++n) {
             for (int i = 0; i < D; ++i) {
                 double v = 0.0;
@@ -50,8 +50,7 @@ Field field(int dim) {
 }
 
 Mesh distorted_mesh(int dim) {
-    Mesh m = dim == 2 ? rectangle_mesh({2.0, 1.5, 4, 3})
-                      : box_mesh({1.0, 1.2, 0.9, 3, 2, 3});
+    Mesh m = dim == 2 ? rectangle_mesh({2.0, 1.5, 4, 3}) : box_mesh({1.0, 1.2, 0.9, 3, 2, 3});
     distort(m, 0.2, 0.3);
     return m;
 }

@@ -44,8 +44,8 @@ Snapshot run(int threads, Integration integration) {
     st.gravity = GravityRamp{10.0, 10.0};
     const auto res = solver.run_stage(st);
     EXPECT_TRUE(res.ok) << res.reason;
-    Snapshot snap{solver.displacement(), solver.internal_force(), {},
-                  solver.counters().newton_iterations};
+    Snapshot snap{
+        solver.displacement(), solver.internal_force(), {}, solver.counters().newton_iterations};
     for (int e = 0; e < m.n_elements(); ++e) {
         for (int q = 0; q < solver.points_per_element(); ++q) {
             const auto y = solver.state(e, q);
