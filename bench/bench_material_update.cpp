@@ -35,7 +35,9 @@ LinearElasticParams bench_params<LinearElastic>() {
     return LinearElasticParams{};
 }
 
-template <class M>
+// identical = true: every point gets the first sampled state and increment, so all lanes take
+// the same substeps (shows what lane divergence costs the SIMD path).
+template <class M, bool identical = false>
 void BM_update(benchmark::State& state) {
     const auto points = static_cast<std::size_t>(state.range(0));
     const bool use_simd = state.range(1) != 0;
@@ -44,6 +46,17 @@ void BM_update(benchmark::State& state) {
     const auto params = bench_params<M>();
     MaterialPoints<M> mp(points);
     fill_samples(mp, params, SampleSpec{});
+    if constexpr (identical) {
+        const auto y = mp.state(0);
+        Sym<double> d;
+        for (int j = 0; j < 6; ++j) {
+            d[j] = mp.deps(j)[0];
+        }
+        for (std::size_t i = 0; i < points; ++i) {
+            mp.set_state(i, y);
+            mp.set_deps(i, d);
+        }
+    }
     UpdateOptions opt;
     opt.simd = use_simd;
     double substeps = 0.0;
@@ -70,6 +83,7 @@ void sizes(benchmark::internal::Benchmark* b) {
 }
 
 BENCHMARK(BM_update<Hypoplasticity>)->Name("Hypoplasticity")->Apply(sizes);
+BENCHMARK(BM_update<Hypoplasticity, true>)->Name("HypoplasticityIdenticalStates")->Apply(sizes);
 BENCHMARK(BM_update<Sanisand>)->Name("Sanisand")->Apply(sizes);
 BENCHMARK(BM_update<LinearElastic>)->Name("LinearElastic")->Apply(sizes);
 
