@@ -89,6 +89,7 @@ struct Options {
         "  --cases LIST         comma list of mono-novel, mono-stutz, cyclic-novel (default all)\n"
         "  --knobs LIST         only these knobs (default, max_subincrement, tolerance,\n"
         "                       polish_iterations, jacobian, theta, step_tolerance,\n"
+        "                       max_subincrement_tight_step,\n"
         "                       model_tolerance, inner_jacobian, adaptive_tolerance,\n"
         "                       adaptive_tolerance_tight_step, adaptive_model_tolerance);\n"
         "                       the reference always runs\n"
@@ -375,6 +376,16 @@ std::vector<Setting> make_settings(InterfaceFormulation f, const Options& o) {
     }
     for (double v : q ? V{o.tight_step_tolerance} : V{1e-3, o.tight_step_tolerance}) {
         add("step_tolerance", num(v), [&](Setting& s) { s.step_tolerance = v; });
+    }
+    // The sub-increment's own error, below the one the test's Newton leaves at its default
+    // tolerance: the same sweep at the tight step tolerance (5e-6 is step_tolerance's run).
+    if (!q) {
+        for (double v : {4e-5, 2e-5, 1e-5}) {
+            add("max_subincrement_tight_step", num(v), [&](Setting& s) {
+                s.contact.interface.max_subincrement = v;
+                s.step_tolerance = o.tight_step_tolerance;
+            });
+        }
     }
     if (!q) {
         for (double v : {1e-2, 1e-4}) {

@@ -21,6 +21,7 @@ import sys
 
 STYLE = {
     "max_subincrement": ("tab:blue", "o"),
+    "max_subincrement_tight_step": ("navy", "o"),
     "tolerance": ("tab:orange", "s"),
     "polish_iterations": ("tab:red", "D"),
     "jacobian": ("tab:purple", "^"),
@@ -245,7 +246,7 @@ def main(argv):
         seen.setdefault(l, h)
     fig.legend(list(seen.values()), list(seen.keys()), loc="upper center", ncol=6, fontsize=8,
                frameon=False)
-    fig.tight_layout(rect=(0, 0, 1, 1 - 0.35 / (4.6 * len(tests))))
+    fig.tight_layout(rect=(0, 0, 1, 1 - 0.7 / (4.6 * len(tests))))
     fig.savefig(argv[2], dpi=130)
     print(f"wrote {argv[2]}")
     return 0
