@@ -64,8 +64,8 @@ struct Options {
     int cyclic_cycles = 1;
     int cyclic_steps_per_quarter = 25;
     double cyclic_amplitude = 0.00075; // m
-    double reference_factor = 10.0; // reference max_subincrement = paper / factor
-    std::vector<std::string> knobs;  // empty: all
+    double reference_factor = 10.0;    // reference max_subincrement = paper / factor
+    std::vector<std::string> knobs;    // empty: all
     // 1e-8 stalls Algorithm 1's Newton in the first step (docs/accuracy.md); 1e-7 converges.
     double reference_tolerance = 1.0e-7;
     double reference_model_tolerance = 1.0e-5;
@@ -104,7 +104,8 @@ struct Options {
         "  --reference-newton-iterations N  Algorithm 1's iteration limit there (100)\n"
         "  --reference-perturbation-jacobian  Algorithm 1's Newton Jacobian there by\n"
         "                       perturbation (default: rate stiffness)\n"
-        "  --tight-step-tolerance T  the test's Newton tolerance of the runs at a tight one (1e-6)\n"
+        "  --tight-step-tolerance T  the test's Newton tolerance of the runs at a tight one "
+        "(1e-6)\n"
         "  --paths              also write DIR/path_TEST.csv: u_t1, t_t1, u_n of the reference\n"
         "                       and of the default run\n");
     std::exit(code);
@@ -339,7 +340,9 @@ const char* jacobian_name(ContactJacobian j) {
     return "?";
 }
 
-std::string num(double v) { return fmt::format("{:g}", v); }
+std::string num(double v) {
+    return fmt::format("{:g}", v);
+}
 
 // One knob at a time around the engine defaults, then the adaptive sweeps.
 std::vector<Setting> make_settings(InterfaceFormulation f, const Options& o) {
@@ -630,14 +633,14 @@ void write_outputs(const Options& o, const std::vector<TestCase>& cases,
     j["threads"] = o.threads;
     j["simd"] = !o.scalar;
     j["simd_lanes"] = simd::lanes;
-    j["reference"] = {{"max_subincrement", 5.0e-6 / o.reference_factor},
-                      {"tolerance", o.reference_tolerance},
-                      {"polish_iterations", 1},
-                      {"model_tolerance", o.reference_model_tolerance},
-                      {"step_tolerance", o.reference_step_tolerance},
-                      {"max_newton_iterations", o.reference_newton_iterations},
-                      {"inner_jacobian",
-                       o.reference_perturbation_jacobian ? "perturbation" : "rate"}};
+    j["reference"] = {
+        {"max_subincrement", 5.0e-6 / o.reference_factor},
+        {"tolerance", o.reference_tolerance},
+        {"polish_iterations", 1},
+        {"model_tolerance", o.reference_model_tolerance},
+        {"step_tolerance", o.reference_step_tolerance},
+        {"max_newton_iterations", o.reference_newton_iterations},
+        {"inner_jacobian", o.reference_perturbation_jacobian ? "perturbation" : "rate"}};
     j["error_definition"] = "max over the path of |x - x_ref| / max |x_ref| at the same plate "
                             "displacements, x = t_t1 (err_tau) or u_n (err_un)";
     for (const auto& tc : cases) {
@@ -703,8 +706,8 @@ int main(int argc, char** argv) {
     std::size_t n_runs = 0;
     for (const auto& name : o.cases) {
         cases.push_back(make_case(name, o));
-        const auto f = name == "mono-stutz" ? InterfaceFormulation::stutz
-                                            : InterfaceFormulation::novel;
+        const auto f =
+            name == "mono-stutz" ? InterfaceFormulation::stutz : InterfaceFormulation::novel;
         auto grid = make_settings(f, o);
         if (!o.knobs.empty()) {
             std::erase_if(grid, [&](const Setting& st) {
