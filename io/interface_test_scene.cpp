@@ -34,8 +34,10 @@ constexpr std::string_view coulomb_keys[] = {"friction_coefficient", "tangential
 // [integration] keys that tune Algorithm 1 (no meaning for Coulomb friction).
 constexpr std::string_view algorithm1_keys[] = {"interface_newton_jacobian",
                                                 "interface_max_newton_iterations",
-                                                "polish_iterations", "adaptive_tolerance",
-                                                "band_collapse", "min_band_fraction"};
+                                                "polish_iterations",
+                                                "adaptive_tolerance",
+                                                "band_collapse",
+                                                "min_band_fraction"};
 
 template <std::size_t N>
 void reject_keys(const TableReader& t, const std::string_view (&keys)[N], const std::string& why) {
