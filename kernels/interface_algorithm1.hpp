@@ -315,8 +315,10 @@ void interface_update(const typename M::Params& mp, const InterfaceSettings& s,
         for (int c = 0; c < 3; ++c) {
             x_rate[c] = simd::select(accept, x_new[c] / safe_hl, x_rate[c]);
         }
-        stats.residual =
-            simd::select(accept, simd::max(stats.residual, full.residual), stats.residual);
+        // Accepted sub-increments keep the worst converged residual; a failed lane reports the
+        // residual it stopped at, so the diagnostic says how far Eqs. 18-20 were from met.
+        stats.residual = simd::select(accept || (failed && !full.converged),
+                                      simd::max(stats.residual, full.residual), stats.residual);
         stats.subincrements += simd::select(accept, T(1.0), T(0.0));
         last_h = simd::select(accept, hl, last_h);
         t = simd::select(accept, t_end, t);
