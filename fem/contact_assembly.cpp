@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fem/stress_extrapolation.hpp"
+
 namespace ifsim::fem {
 
 MortarContact2D::MortarContact2D(const Mesh& mesh, const std::string& slave_faces,
@@ -32,7 +34,32 @@ bool MortarContact2D::pair(const Mesh& mesh, const std::vector<double>& u) {
         }
     }
     points_ = std::move(next);
+    view_.resize(points_.size());
+    ++counters_.pairings;
+    counters_.projections += static_cast<long>(points_.size());
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+        counters_.projection_iterations += points_[i].master.iterations;
+        refresh_view(i);
+    }
+    counters_.pattern_changes += changed ? 1 : 0;
     return changed;
+}
+
+void MortarContact2D::refresh_view(std::size_t i) {
+    const ContactPointState& p = points_[i];
+    ContactKinematics& v = view_[i];
+    v.active = p.master.in_contact;
+    v.g_N = p.g_N;
+    v.dg_T = {p.dg_T, 0.0};
+    v.n = {p.master.normal[0], p.master.normal[1], 0.0};
+    v.t1 = {p.master.tangent[0], p.master.tangent[1], 0.0};
+    v.t2 = {0.0, 0.0, 1.0};
+    const FaceRef& face = slave_.edge_face(p.slave.edge);
+    v.slave_element = face.element;
+    const auto xi = quad4_face_point(face.local_face, p.slave.xi);
+    v.slave_natural = {xi[0], xi[1], 0.0};
+    v.weight = p.slave.weight_j;
+    v.x = {p.slave.x[0], p.slave.x[1], 0.0};
 }
 
 void MortarContact2D::update_gaps(const std::vector<double>& du) {
@@ -52,6 +79,27 @@ void MortarContact2D::update_gaps(const std::vector<double>& du) {
                 (dus[1] - dum[1]) * p.master.normal[1];
         p.dg_T = tangential_gap_increment(p.master, du, dus); // Eq. A13
     }
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+        view_[i].g_N = points_[i].g_N;
+        view_[i].dg_T[0] = points_[i].dg_T;
+    }
+}
+
+void MortarContact2D::assemble(std::span<const ContactTraction> traction,
+                               std::vector<double>& f_int, std::vector<ContactTriplet>* K) const {
+    if (traction.size() != points_.size()) {
+        throw std::invalid_argument("MortarContact2D::assemble: one traction per contact point");
+    }
+    std::vector<PointTraction> planar(traction.size());
+    for (std::size_t i = 0; i < traction.size(); ++i) {
+        planar[i].t_N = traction[i].t_N;
+        planar[i].tau = traction[i].tau[0];
+        for (std::size_t c = 0; c < 4; ++c) { // slave x, y, master x, y
+            planar[i].jac[0][c] = traction[i].jac[0][c];
+            planar[i].jac[1][c] = traction[i].jac[1][c];
+        }
+    }
+    assemble(std::span<const PointTraction>(planar), f_int, K);
 }
 
 void MortarContact2D::assemble(std::span<const PointTraction> traction, std::vector<double>& f_int,

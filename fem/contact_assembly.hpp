@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "fem/contact_kinematics.hpp"
 #include "fem/mesh.hpp"
 #include "fem/mortar_surface.hpp"
 
@@ -44,24 +45,26 @@ struct PointTraction {
     std::array<std::array<double, 4>, 2> jac{};
 };
 
-struct ContactTriplet {
-    int row = 0; // global DOF (2 * node + direction)
-    int col = 0;
-    double value = 0.0;
-};
-
-class MortarContact2D {
+class MortarContact2D : public MortarKinematics {
 public:
     MortarContact2D(const Mesh& mesh, const std::string& slave_faces,
                     const std::string& master_faces);
 
+    // The dimension-independent view (fem/contact_kinematics.hpp).
+    int dim() const override { return 2; }
+    std::size_t n_points() const override { return points_.size(); }
+    const ContactKinematics& point(std::size_t i) const override { return view_[i]; }
+    void assemble(std::span<const ContactTraction> traction, std::vector<double>& f_int,
+                  std::vector<ContactTriplet>* K) const override;
+    const ProjectionCounters& projection_counters() const override { return counters_; }
+
     // Projects every slave integration point in the configuration x + u (start of an
     // increment). Returns true when the pairing (active flags and master edges) changed, i.e.
     // the sparse pattern's contact couplings must be rebuilt.
-    bool pair(const Mesh& mesh, const std::vector<double>& u);
+    bool pair(const Mesh& mesh, const std::vector<double>& u) override;
 
     // Gaps of the active points for the displacement increment du (dim per node).
-    void update_gaps(const std::vector<double>& du);
+    void update_gaps(const std::vector<double>& du) override;
 
     const std::vector<ContactPointState>& points() const { return points_; }
     // The slave element face of a slave edge (for the stress extrapolation, Eq. 14).
@@ -73,12 +76,16 @@ public:
                   std::vector<ContactTriplet>* K) const;
 
     // DOF couplings of the current pairing (the pattern's contact entries).
-    std::vector<std::array<int, 2>> couplings() const;
+    std::vector<std::array<int, 2>> couplings() const override;
 
 private:
     ContactSurface2D slave_;
     ContactSurface2D master_;
+    void refresh_view(std::size_t i);
+
     std::vector<ContactPointState> points_;
+    std::vector<ContactKinematics> view_;
+    ProjectionCounters counters_;
 };
 
 } // namespace ifsim::fem

@@ -12,7 +12,8 @@ std::atomic<std::uint64_t> next_pattern_id{1};
 
 } // namespace
 
-SparseSystem::SparseSystem(const Mesh& mesh, const DofMap& dofs) {
+SparseSystem::SparseSystem(const Mesh& mesh, const DofMap& dofs,
+                           std::span<const std::array<int, 2>> couplings) {
     const int D = mesh.dim();
     const int nen = mesh.nodes_per_element();
     const int ne = mesh.n_elements();
@@ -26,12 +27,22 @@ SparseSystem::SparseSystem(const Mesh& mesh, const DofMap& dofs) {
             }
         }
     }
-    build_pattern(dofs.n_equations, ne);
+    std::vector<std::array<int, 2>> extra;
+    extra.reserve(couplings.size());
+    for (const auto& c : couplings) {
+        const int r = dofs.equation.at(static_cast<std::size_t>(c[0]));
+        const int q = dofs.equation.at(static_cast<std::size_t>(c[1]));
+        if (r >= 0 && q >= 0) {
+            extra.push_back({r, q});
+        }
+    }
+    build_pattern(dofs.n_equations, ne, extra);
     build_colours(mesh, mesh.n_nodes());
     pattern_id_ = next_pattern_id.fetch_add(1);
 }
 
-void SparseSystem::build_pattern(int n_eq, int ne) {
+void SparseSystem::build_pattern(int n_eq, int ne,
+                                 const std::vector<std::array<int, 2>>& extra_equations) {
     std::vector<std::vector<int>> rows_of_col(static_cast<std::size_t>(n_eq));
     for (int j = 0; j < n_eq; ++j) {
         rows_of_col[static_cast<std::size_t>(j)].push_back(j); // diagonal always present
@@ -49,6 +60,9 @@ void SparseSystem::build_pattern(int n_eq, int ne) {
                 }
             }
         }
+    }
+    for (const auto& rc : extra_equations) {
+        rows_of_col[static_cast<std::size_t>(rc[1])].push_back(rc[0]);
     }
     std::size_t nnz = 0;
     for (auto& col : rows_of_col) {
@@ -161,6 +175,18 @@ void SparseSystem::add_element_matrix(int element, const double* Ke) {
             values[pos[k]] += Ke[k];
         }
     }
+}
+
+void SparseSystem::add_value(int row_equation, int col_equation, double v) {
+    const int* inner = A_.innerIndexPtr();
+    const int* outer = A_.outerIndexPtr();
+    const int* b = inner + outer[col_equation];
+    const int* e = inner + outer[col_equation + 1];
+    const int* it = std::lower_bound(b, e, row_equation);
+    if (it == e || *it != row_equation) {
+        throw std::out_of_range("SparseSystem::add_value: entry not in the sparse pattern");
+    }
+    A_.valuePtr()[it - inner] += v;
 }
 
 void SparseSystem::add_diagonal(int equation, double v) {

@@ -10,6 +10,7 @@
 // scattered in parallel without locks, colours one after another, so every sum is formed in
 // the same order for any number of threads.
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -23,7 +24,10 @@ namespace ifsim::fem {
 
 class SparseSystem {
 public:
-    SparseSystem(const Mesh& mesh, const DofMap& dofs);
+    // `couplings` are extra pairs of global DOFs (row, column) that get an entry, e.g. those
+    // of the current contact pairing; pairs with a prescribed DOF are skipped.
+    SparseSystem(const Mesh& mesh, const DofMap& dofs,
+                 std::span<const std::array<int, 2>> couplings = {});
 
     Eigen::SparseMatrix<double>& matrix() { return A_; }
     const Eigen::SparseMatrix<double>& matrix() const { return A_; }
@@ -38,6 +42,10 @@ public:
     // DOFs are skipped, those of tied DOFs go to the master's equation.
     void add_element_matrix(int element, const double* Ke);
     void add_diagonal(int equation, double v);
+    // Adds v at (row, col) of the reduced matrix; the entry must be in the pattern (an
+    // element's or a coupling's), else std::out_of_range. A binary search per call: for the
+    // few entries of contact tangents, not for element matrices.
+    void add_value(int row_equation, int col_equation, double v);
     // Equation of each element DOF (local node-major), -1 when prescribed.
     std::span<const int> element_equations(int element) const {
         return {elem_eq_.data() + static_cast<std::size_t>(element) * ndof_,
@@ -52,7 +60,8 @@ public:
     }
 
 private:
-    void build_pattern(int n_eq, int n_elements);
+    void build_pattern(int n_eq, int n_elements,
+                       const std::vector<std::array<int, 2>>& extra_equations);
     void build_colours(const Mesh& mesh, int n_nodes);
 
     int ndof_ = 0;

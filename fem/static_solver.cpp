@@ -129,7 +129,77 @@ StaticSolver::~StaticSolver() = default;
 
 const SolverCounters& StaticSolver::counters() const {
     counters_.linear = linear_.counters();
+    counters_.contact_pairings = 0;
+    counters_.contact_evaluations = 0;
+    counters_.contact_point_updates = 0.0;
+    counters_.contact_lanes = 0.0;
+    counters_.contact_subincrements = 0.0;
+    counters_.contact_constitutive_evaluations = 0.0;
+    counters_.contact_failures = 0;
+    for (const auto& c : contacts_) {
+        const ContactPairCounters& k = c->counters();
+        counters_.contact_pairings += c->kinematics().projection_counters().pairings;
+        counters_.contact_evaluations += k.evaluations;
+        counters_.contact_point_updates += k.point_updates;
+        counters_.contact_lanes += k.lanes;
+        counters_.contact_subincrements += k.subincrements;
+        counters_.contact_constitutive_evaluations += k.constitutive_evaluations;
+        counters_.contact_failures += k.failed_evaluations;
+    }
     return counters_;
+}
+
+SolverTimers StaticSolver::timers() const {
+    SolverTimers t = timers_;
+    t.contact_scatter += contact_matrix_s_;
+    for (const auto& c : contacts_) {
+        t.contact_search += c->timers().search;
+        t.contact_gather += c->timers().gather;
+        t.contact_kernels += c->timers().kernels;
+        t.contact_scatter += c->timers().scatter;
+    }
+    return t;
+}
+
+void StaticSolver::add_contact(ContactPairSpec spec) {
+    if (stage_count_ > 0) {
+        throw std::logic_error("contact pairs are added before the first stage");
+    }
+    contacts_.push_back(make_contact_pair(mesh_, std::move(spec)));
+}
+
+void StaticSolver::element_stresses(int element, std::vector<Voigt6>& out) const {
+    const auto e = static_cast<std::size_t>(element);
+    const SetData& s = *sets_[static_cast<std::size_t>(set_of_element_.at(e))];
+    out.resize(static_cast<std::size_t>(geom_.nip));
+    for (int q = 0; q < geom_.nip; ++q) {
+        const auto p = static_cast<std::size_t>(local_of_element_[e] * geom_.nip + q);
+        const std::vector<double> y = s.material->state(p);
+        for (std::size_t j = 0; j < 6; ++j) {
+            out[static_cast<std::size_t>(q)][j] = y[j];
+        }
+    }
+}
+
+void StaticSolver::begin_contacts(bool dofs_changed) {
+    bool changed = dofs_changed;
+    const ElementStresses stresses = [this](int e, std::vector<Voigt6>& out) {
+        element_stresses(e, out);
+    };
+    for (auto& c : contacts_) {
+        changed = c->begin_increment(mesh_, u_, stresses) || changed;
+    }
+    if (!changed && system_) {
+        return;
+    }
+    std::vector<std::array<int, 2>> couplings;
+    for (const auto& c : contacts_) {
+        const auto more = c->couplings();
+        couplings.insert(couplings.end(), more.begin(), more.end());
+    }
+    system_ = std::make_unique<SparseSystem>(mesh_, dofs_, couplings);
+    ++counters_.patterns_built;
+    counters_.contact_pattern_rebuilds += dofs_changed ? 0 : 1;
 }
 
 std::vector<double> StaticSolver::state(int element, int point) const {
@@ -198,11 +268,14 @@ void StaticSolver::begin_stage(const Stage& stage) {
     }
     stage_ = stage;
     ++stage_count_;
-    if (!system_ || next.equation != dofs_.equation) {
-        system_ = std::make_unique<SparseSystem>(mesh_, next);
+    const bool dofs_changed = !system_ || next.equation != dofs_.equation;
+    dofs_ = std::move(next);
+    if (!contacts_.empty()) {
+        begin_contacts(dofs_changed);
+    } else if (dofs_changed) {
+        system_ = std::make_unique<SparseSystem>(mesh_, dofs_);
         ++counters_.patterns_built;
     }
-    dofs_ = std::move(next);
     u_stage_start_ = u_;
     dt_last_ = 0.0;
     const int D = mesh_.dim();
@@ -434,6 +507,14 @@ bool StaticSolver::residual_pass(double t, std::span<const double> du, std::stri
             }
         }
     }
+    if (!contacts_.empty()) {
+        contact_du_.assign(du.begin(), du.end());
+        for (auto& c : contacts_) {
+            if (!c->evaluate(contact_du_, f_int_, error)) {
+                return false;
+            }
+        }
+    }
     external_force(t, f_ext_);
     PhaseTimer timer(timers_.assembly);
     std::fill(residual_.begin(), residual_.end(), 0.0);
@@ -465,6 +546,21 @@ void StaticSolver::tangent_pass(std::span<const double> du) {
             }
         }
     }
+    if (contacts_.empty()) {
+        return;
+    }
+    PhaseTimer contact_timer(contact_matrix_s_);
+    for (const auto& c : contacts_) {
+        contact_K_.clear();
+        c->add_tangent(contact_K_);
+        for (const ContactTriplet& k : contact_K_) {
+            const int r = dofs_.equation[static_cast<std::size_t>(k.row)];
+            const int q = dofs_.equation[static_cast<std::size_t>(k.col)];
+            if (r >= 0 && q >= 0) {
+                system_->add_value(r, q, k.value);
+            }
+        }
+    }
 }
 
 bool StaticSolver::evaluate(double t, std::span<const double> increment, bool with_tangent,
@@ -488,6 +584,9 @@ bool StaticSolver::evaluate(double t, std::span<const double> increment, bool wi
 
 bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& info,
                                    std::string& error) {
+    if (!contacts_.empty()) {
+        begin_contacts(false);
+    }
     std::fill(du_.begin(), du_.end(), 0.0);
     if (settings_.extrapolate && dt_last_ > 0.0) {
         const double scale = (t_end - t_begin) / dt_last_;
@@ -563,6 +662,9 @@ StageResult StaticSolver::run_stage(const Stage& stage, const IncrementCallback&
             if (solve_increment(t_a, t_b, info, error)) {
                 for (auto& s : sets_) {
                     s->material->commit();
+                }
+                for (auto& c : contacts_) {
+                    c->commit();
                 }
                 for (std::size_t d = 0; d < u_.size(); ++d) {
                     u_[d] += du_[d];

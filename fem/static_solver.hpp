@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "fem/contact_pair.hpp"
 #include "fem/dof_map.hpp"
 #include "fem/element_geometry.hpp"
 #include "fem/linear_solver.hpp"
@@ -47,6 +48,15 @@ struct SolverCounters {
     long gravity_load_applications = 0; // evaluations with gravity in the external force
     long pressure_load_builds = 0;
     long k0_points = 0; // integration points given a K0 initial stress
+    // Contact (all pairs): pairings, engine updates and what they cost.
+    long contact_pairings = 0;
+    long contact_pattern_rebuilds = 0; // patterns rebuilt because the pairing changed
+    long contact_evaluations = 0;      // engine updates (one per residual evaluation and pair)
+    double contact_point_updates = 0.0;
+    double contact_lanes = 0.0;         // Algorithm 1 runs incl. Jacobian lanes
+    double contact_subincrements = 0.0; // Algorithm 1 sub-increments (base lanes)
+    double contact_constitutive_evaluations = 0.0;
+    long contact_failures = 0; // engine updates with a failed point (the increment was cut)
     LinearSolverCounters linear;
 };
 
@@ -57,6 +67,11 @@ struct SolverTimers {
     double gravity = 0.0;  // building and scaling the gravity load
     double k0 = 0.0;       // initial K0 stress
     double pressure = 0.0; // building and scaling face pressures
+    // Contact, summed over the pairs (paper Table 5 split).
+    double contact_search = 0.0;  // pairing: projection onto the master surface
+    double contact_gather = 0.0;  // frames, extrapolated stresses, gaps into the engine arrays
+    double contact_kernels = 0.0; // the contact engines' batched updates
+    double contact_scatter = 0.0; // tractions to nodal forces, tangent entries into the matrix
 };
 
 struct IncrementInfo {
@@ -98,7 +113,13 @@ public:
     const Mesh& mesh() const { return mesh_; }
     const ElementGeometry& geometry() const { return geom_; }
     const SolverCounters& counters() const;
-    const SolverTimers& timers() const { return timers_; }
+    SolverTimers timers() const; // the solver's phases plus the contact pairs'
+
+    // Adds a contact pair on two face sets of the mesh (before the first stage). Throws
+    // std::invalid_argument for unknown face sets or invalid settings, std::logic_error after
+    // the first stage.
+    void add_contact(ContactPairSpec spec);
+    const std::vector<std::unique_ptr<ContactPair>>& contacts() const { return contacts_; }
     const SolverSettings& settings() const { return settings_; }
 
     // Probing (tests, diagnostics): prepare a stage without running it, then evaluate the
@@ -127,6 +148,10 @@ private:
     bool update_materials(bool with_tangent, std::string& error);
     void assemble(std::span<const double> du, bool with_tangent);
     void external_force(double t, std::vector<double>& f);
+    // Pairs every contact at the committed configuration and gathers its stresses; rebuilds
+    // the sparse pattern when the stage's DOF map or a pairing changed.
+    void begin_contacts(bool dofs_changed);
+    void element_stresses(int element, std::vector<Voigt6>& out) const;
     void apply_k0();
     void hourglass_stiffness();
     template <int D>
@@ -166,6 +191,12 @@ private:
     std::vector<double> residual_;   // reduced
     std::vector<double> correction_; // reduced
     double reference_force_ = 0.0;
+
+    // Contact pairs and their scratch.
+    std::vector<std::unique_ptr<ContactPair>> contacts_;
+    std::vector<double> contact_du_;
+    std::vector<ContactTriplet> contact_K_;
+    double contact_matrix_s_ = 0.0; // adding the contact tangent entries to the matrix
 
     mutable SolverCounters counters_;
     SolverTimers timers_;

@@ -137,4 +137,39 @@ Mesh box_mesh(const BoxSpec& s) {
     return m;
 }
 
+void append_body(Mesh& into, const Mesh& body, const std::string& name) {
+    if (into.n_elements() > 0 && into.type != body.type) {
+        throw std::invalid_argument("body '" + name + "' has another element type than the mesh");
+    }
+    if (into.element_sets.contains(name)) {
+        throw std::invalid_argument("a body named '" + name + "' exists already");
+    }
+    into.type = body.type;
+    const int node0 = into.n_nodes();
+    const int elem0 = into.n_elements();
+    into.coordinates.insert(into.coordinates.end(), body.coordinates.begin(),
+                            body.coordinates.end());
+    for (int n : body.connectivity) {
+        into.connectivity.push_back(node0 + n);
+    }
+    for (const auto& [set, nodes] : body.node_sets) {
+        auto& out = into.node_sets[name + "." + set];
+        for (int n : nodes) {
+            out.push_back(node0 + n);
+        }
+    }
+    for (const auto& [set, faces] : body.face_sets) {
+        auto& out = into.face_sets[name + "." + set];
+        for (const FaceRef& f : faces) {
+            out.push_back({elem0 + f.element, f.local_face});
+        }
+    }
+    for (const auto& [set, elements] : body.element_sets) {
+        auto& out = into.element_sets[set == "all" ? name : name + "." + set];
+        for (int e : elements) {
+            out.push_back(elem0 + e);
+        }
+    }
+}
+
 } // namespace ifsim::fem

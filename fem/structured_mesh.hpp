@@ -6,6 +6,7 @@
 // front/back (y = min/max). Element set "all"; node set "all".
 
 #include <array>
+#include <string>
 
 #include "fem/mesh.hpp"
 
@@ -32,5 +33,10 @@ struct BoxSpec {
 // Throw std::invalid_argument for non-positive sizes or element counts.
 Mesh rectangle_mesh(const RectangleSpec& spec);
 Mesh box_mesh(const BoxSpec& spec);
+
+// Appends `body` to `into` as a separate body (no shared nodes): its sets are renamed
+// "<name>.<set>" and its elements form the element set "<name>". Throws std::invalid_argument
+// for another element type or a name already used.
+void append_body(Mesh& into, const Mesh& body, const std::string& name);
 
 } // namespace ifsim::fem

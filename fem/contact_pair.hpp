@@ -1,0 +1,125 @@
+#pragma once
+// One contact pair as the static solver drives it: mortar kinematics (2D or 3D) feeding a
+// batched contact engine — Coulomb penalty friction or a continuum model used as interface
+// model through Algorithm 1 (novel or Stutz formulation) — and the engine's tractions and
+// Jacobian columns turned back into nodal forces and tangent entries (paper Appendix A).
+//
+// Per increment (attempt): begin_increment() pairs the slave points with the master in the
+// converged configuration and gathers the frame and the continuum stress extrapolated from the
+// slave elements' integration points and rotated into the frame (Eqs. 14-16). Per Newton
+// iteration: evaluate() (gaps for the trial increment, the engine update with its Jacobian
+// columns, forces into f_int) and, when the solver needs the tangent, add_tangent() from the
+// same evaluation. commit() after convergence.
+//
+// Normal contact is a penalty: t_N = k_N (g_N - g_0) while that is <= 0. With `prestressed`
+// (default) g_0 is set at the first pairing so that t_N equals the continuum's normal stress
+// there: the contact starts in equilibrium with an initial (K0) stress state, as an initial
+// stress state of the soil demands. The local t1 follows `shear_direction` projected onto the
+// contact plane (default the global x axis), so "shear along +t1" means the same in every
+// scene regardless of how the master faces happen to be ordered.
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "engine/contact_update.hpp"
+#include "engine/material_choice.hpp"
+#include "fem/contact_kinematics.hpp"
+#include "fem/mesh.hpp"
+#include "fem/stress_extrapolation.hpp"
+#include "kernels/coulomb.hpp"
+
+namespace ifsim::fem {
+
+// The model state of an interface point from the continuum stress at the point in its local
+// frame (Voigt: 11 = normal, 22 = t1, 33 = t2, 12 = n-t1, 13 = n-t2, 23 = t1-t2). The caller
+// decides what the interface takes from it (novel: sigma_N, sigma_p1, sigma_p2 and the shear;
+// Stutz from the normal contact: all three normal components equal to sigma_N).
+using InterfaceStateFromStress = std::function<std::vector<double>(const Voigt6& local_stress)>;
+
+struct ContactPairSpec {
+    std::string name = "interface";
+    std::string slave_faces;       // the soil side: its continuum stress feeds Eq. 14
+    std::string master_faces;      // the structure
+    double normal_penalty = 1.0e8; // k_N, kPa/m
+    bool prestressed = true;
+    std::array<double, 3> shear_direction{1.0, 0.0, 0.0};
+    bool coulomb = false;
+    CoulombParams friction;                 // coulomb
+    MaterialChoice interface_material;      // continuum (hypoplasticity or sanisand)
+    InterfaceStateFromStress initial_state; // continuum
+    ContactOptions options;                 // continuum: formulation, Algorithm 1, Jacobian
+};
+
+struct ContactPairTimers {
+    double search = 0.0;  // pairing: projection of the slave points onto the master
+    double gather = 0.0;  // frames, extrapolated stresses, gaps into the engine's arrays
+    double kernels = 0.0; // the contact engine's batched update (with Jacobian lanes)
+    double scatter = 0.0; // tractions to nodal forces and tangent entries
+};
+
+struct ContactPairCounters {
+    long evaluations = 0;       // engine updates (one per residual evaluation)
+    double point_updates = 0.0; // contact-point updates (base lanes)
+    double lanes = 0.0;         // Algorithm 1 runs incl. Jacobian lanes
+    double subincrements = 0.0; // Algorithm 1 sub-increments of the base lanes
+    double constitutive_evaluations = 0.0;
+    double interface_newton_iterations = 0.0;
+    long failed_evaluations = 0;
+    long band_clamped = 0;
+    double dropped_columns = 0.0;
+};
+
+// Area-weighted means over the points in contact (committed state after commit()).
+struct ContactResultant {
+    double area = 0.0; // of the active points (per m of thickness in 2D)
+    int active = 0;
+    int closed = 0;
+    double t_N = 0.0;                      // mean normal traction, negative in compression
+    std::array<double, 3> shear{};         // mean shear traction on the slave body, global axes
+    double void_ratio = 0.0;               // interface zone (continuum formulations)
+    double eps_N = 0.0;                    // interface normal strain
+    double band_thickness = 0.0;           // d_s (Eq. 26)
+    double sigma_p1 = 0.0, sigma_p2 = 0.0; // interface in-plane stresses
+};
+
+// Continuum stress (Voigt) at the integration points of an element, solver order.
+using ElementStresses = std::function<void(int element, std::vector<Voigt6>& stresses)>;
+
+class ContactPair {
+public:
+    virtual ~ContactPair() = default;
+    virtual const ContactPairSpec& spec() const = 0;
+    virtual const MortarKinematics& kinematics() const = 0;
+
+    // Pairing and gather at the start of an increment; true when the DOF couplings changed.
+    virtual bool begin_increment(const Mesh& mesh, const std::vector<double>& u,
+                                 const ElementStresses& stresses) = 0;
+    // Tractions for the trial increment du, forces added to f_int. False (with a message
+    // naming the failed point) when the contact engine failed: the caller cuts the increment.
+    virtual bool evaluate(const std::vector<double>& du, std::vector<double>& f_int,
+                          std::string& error) = 0;
+    // Tangent entries of the last evaluate().
+    virtual void add_tangent(std::vector<ContactTriplet>& K) = 0;
+    virtual void commit() = 0;
+
+    virtual ContactResultant resultant() const = 0;
+    const ContactPairTimers& timers() const { return timers_; }
+    const ContactPairCounters& counters() const { return counters_; }
+    std::vector<std::array<int, 2>> couplings() const { return kinematics().couplings(); }
+
+protected:
+    ContactPairTimers timers_;
+    ContactPairCounters counters_;
+};
+
+// The mortar kinematics of the mesh's dimension for the spec's face sets, and the pair.
+// Throws std::invalid_argument for unknown face sets, a continuum pair without a state
+// function, or a Coulomb pair with negative parameters.
+std::unique_ptr<ContactPair> make_contact_pair(const Mesh& mesh, ContactPairSpec spec);
+
+} // namespace ifsim::fem

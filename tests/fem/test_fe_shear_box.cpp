@@ -1,0 +1,132 @@
+// The finite-element shear box with the hypoplastic interface wired into the static solver
+// (mortar contact, Eqs. 14-16 gathered per increment, Eq. 37 Jacobian columns in the global
+// tangent) against the point-level interface test of the same sample, and the properties the
+// solver must keep: CNL, the Jacobian schemes' iteration counts, 2D = 3D for a uniform box,
+// one thread = two threads bitwise.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+
+#define IFSIM_TEST_ENGINE_HELPERS
+#include "tests/fem/fe_shear_box.hpp"
+
+using namespace ifsim;
+using namespace ifsim::fem;
+using namespace ifsim::fem::testing;
+
+namespace {
+
+// The point-level twin: same sample (height 0.02 m), same interface, same plate travel.
+test::DriverRun point_level(const ShearBoxOptions& o) {
+    InterfaceTestSpec spec = test::l4c_spec(o.formulation);
+    spec.sample_state[6] = 0.81;
+    spec.interface_state[6] = 0.81;
+    spec.contact.interface.max_subincrement = o.max_subincrement;
+    spec.contact.interface.ndim = o.dim; // 2: plane strain, eps_p2 = 0 (sigma_p2 not imposed)
+    spec.stages = {{o.steps, o.displacement, 0.0}};
+    return test::run_driver(spec);
+}
+
+double interpolate(const std::vector<double>& x, const std::vector<double>& y, double at) {
+    for (std::size_t k = 1; k < x.size(); ++k) {
+        if (x[k] >= at) {
+            const double w = (at - x[k - 1]) / (x[k] - x[k - 1]);
+            return y[k - 1] + w * (y[k] - y[k - 1]);
+        }
+    }
+    return y.back();
+}
+
+// Largest difference of the FE box's mean shear traction from the point-level test's at the
+// same plate travel; prints both at the end.
+double worst_difference(const ShearBoxOptions& o, const ShearBoxRun& fe) {
+    const auto pt = point_level(o);
+    EXPECT_TRUE(pt.result.ok) << pt.result.reason;
+    std::vector<double> u_pt, tau_pt;
+    for (const auto& row : pt.rows) {
+        u_pt.push_back(row.u_t1);
+        tau_pt.push_back(row.t_t1);
+    }
+    double worst = 0.0;
+    for (std::size_t k = 0; k < fe.u_t1.size(); ++k) {
+        worst = std::max(worst, std::abs(fe.t_t1[k] - interpolate(u_pt, tau_pt, fe.u_t1[k])));
+    }
+    std::printf("%dD, %d increments: FE tau %.3f kPa, point level %.3f kPa at %.2g mm; worst "
+                "difference %.3f kPa\n",
+                o.dim, o.steps, fe.t_t1.back(), tau_pt.back(), 1e3 * fe.u_t1.back(), worst);
+    return worst;
+}
+
+// The FE box adds to the point-level idealisation only the penalty's compliance and the
+// explicit gather of s_p1, s_p2 (the continuum stress of the last converged increment, as the
+// paper gathers per increment): the curves agree within a small fraction of the shear stress.
+// The 2D box is compared with the point-level test in plane strain (eps_p2 = 0).
+TEST(FeShearBox, FollowsThePointLevelTestUnderConstantNormalLoadIn2DAnd3D) {
+    for (int dim : {2, 3}) {
+        ShearBoxOptions o;
+        o.dim = dim;
+        o.steps = 40;
+        const ShearBoxRun fe = run_shear_box(o);
+        ASSERT_TRUE(fe.ok) << fe.reason;
+        for (std::size_t k = 0; k < fe.u_t1.size(); ++k) {
+            EXPECT_NEAR(fe.t_n[k], -100.0, 1.0e-3 * 100.0) << "CNL, increment " << k;
+        }
+        EXPECT_GT(fe.t_t1.back(), 40.0); // the interface carries shear
+        EXPECT_LT(worst_difference(o, fe), 0.02 * fe.t_t1.back()) << dim << "D";
+    }
+}
+
+// The lag of the explicit gather is O(increment): the difference shrinks with the increments.
+TEST(FeShearBox, DifferenceToThePointLevelTestShrinksWithTheIncrement) {
+    ShearBoxOptions o;
+    o.dim = 3;
+    o.steps = 10;
+    const double coarse = worst_difference(o, run_shear_box(o));
+    o.steps = 40;
+    const double fine = worst_difference(o, run_shear_box(o));
+    EXPECT_LT(fine, 0.5 * coarse);
+}
+
+TEST(FeShearBox, Eq37JacobianConvergesInFewerIterationsThanAnalyticalB3) {
+    ShearBoxOptions o;
+    o.steps = 10;
+    const ShearBoxRun a = run_shear_box(o);
+    o.jacobian = ContactJacobian::analytical;
+    const ShearBoxRun b = run_shear_box(o);
+    ASSERT_TRUE(a.ok) << a.reason;
+    long total_a = 0, total_b = 0;
+    for (std::size_t k = 0; k < a.iterations.size(); ++k) {
+        total_a += a.iterations[k];
+        // The first shear increment starts from rest (no extrapolation yet).
+        EXPECT_LE(a.iterations[k], k == 0 ? 10 : 6) << "increment " << k;
+    }
+    for (int k : b.iterations) {
+        total_b += k;
+    }
+    for (std::size_t k = 0; k < a.residuals.size(); ++k) {
+        std::printf("increment %zu:", k);
+        for (double r : a.residuals[k]) {
+            std::printf(" %.1e", r);
+        }
+        std::printf("\n");
+    }
+    std::printf("Newton iterations over %d increments: Eq. 37 %ld, Eq. B3 %ld%s\n", o.steps,
+                total_a, total_b, b.ok ? "" : " (B3 run failed)");
+    EXPECT_LT(total_a, total_b);
+}
+
+TEST(FeShearBox, OneAndTwoThreadsGiveBitwiseEqualDisplacements) {
+    ShearBoxOptions o;
+    o.steps = 4;
+    o.threads = 1;
+    const ShearBoxRun a = run_shear_box(o);
+    o.threads = 2;
+    const ShearBoxRun b = run_shear_box(o);
+    ASSERT_TRUE(a.ok && b.ok);
+    ASSERT_EQ(a.u.size(), b.u.size());
+    EXPECT_EQ(std::memcmp(a.u.data(), b.u.data(), a.u.size() * sizeof(double)), 0);
+    EXPECT_EQ(std::memcmp(a.t_t1.data(), b.t_t1.data(), a.t_t1.size() * sizeof(double)), 0);
+}
+
+} // namespace
