@@ -28,6 +28,9 @@ struct ShearBoxOptions {
     double max_subincrement = 5.0e-5;
     int threads = 0; // 0: TBB's default
     double normal_penalty = 1.0e8;
+    int soil_elements = 1; // per horizontal axis (the §5 box: 1)
+    int plate_elements = 7;
+    int max_iterations = 20; // global Newton
 };
 
 struct ShearBoxRun {
@@ -39,6 +42,7 @@ struct ShearBoxRun {
     std::vector<double> u;                      // final displacements
     std::vector<double> interface_state;        // mean void ratio and eps_N at the end
     SolverCounters counters;
+    SolverTimers timers;
 };
 
 inline ShearBoxRun run_shear_box(const ShearBoxOptions& o) {
@@ -51,11 +55,18 @@ inline ShearBoxRun run_shear_box(const ShearBoxOptions& o) {
     const int vert = d3 ? 2 : 1;
     Mesh mesh;
     if (d3) {
-        append_body(mesh, box_mesh({0.14, 0.14, 0.01, 7, 7, 1, {-0.02, -0.02, -0.01}}), "plate");
-        append_body(mesh, box_mesh({0.1, 0.1, 0.02, 1, 1, 1, {0.0, 0.0, 0.0}}), "soil");
+        append_body(
+            mesh,
+            box_mesh(
+                {0.14, 0.14, 0.01, o.plate_elements, o.plate_elements, 1, {-0.02, -0.02, -0.01}}),
+            "plate");
+        append_body(
+            mesh, box_mesh({0.1, 0.1, 0.02, o.soil_elements, o.soil_elements, 1, {0.0, 0.0, 0.0}}),
+            "soil");
     } else {
-        append_body(mesh, rectangle_mesh({0.14, 0.01, 7, 1, {-0.02, -0.01}}), "plate");
-        append_body(mesh, rectangle_mesh({0.1, 0.02, 1, 1, {0.0, 0.0}}), "soil");
+        append_body(mesh, rectangle_mesh({0.14, 0.01, o.plate_elements, 1, {-0.02, -0.01}}),
+                    "plate");
+        append_body(mesh, rectangle_mesh({0.1, 0.02, o.soil_elements, 1, {0.0, 0.0}}), "soil");
     }
     const double R = parameter_sets::hypoplasticity_l4c().R;
     const double e0 = 0.81;
@@ -80,6 +91,7 @@ inline ShearBoxRun run_shear_box(const ShearBoxOptions& o) {
     soil.initial_state = y;
 
     SolverSettings settings;
+    settings.max_iterations = o.max_iterations;
     StaticSolver solver(mesh, {plate, soil}, settings);
     ContactPairSpec c;
     c.slave_faces = "soil.bottom";
@@ -141,6 +153,7 @@ inline ShearBoxRun run_shear_box(const ShearBoxOptions& o) {
     const ContactResultant r = solver.contacts()[0]->resultant();
     run.interface_state = {r.void_ratio, r.eps_N};
     run.counters = solver.counters();
+    run.timers = solver.timers();
     return run;
 }
 
