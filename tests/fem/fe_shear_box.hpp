@@ -8,6 +8,7 @@
 // vertically, and the soil's bottom nodes are tied horizontally (simple shear).
 
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,7 +31,8 @@ struct ShearBoxOptions {
     double normal_penalty = 1.0e8;
     int soil_elements = 1; // per horizontal axis (the §5 box: 1)
     int plate_elements = 7;
-    int max_iterations = 20; // global Newton
+    int max_iterations = 20;                      // global Newton
+    std::function<void(ContactPairSpec&)> adjust; // last changes to the contact pair
 };
 
 struct ShearBoxRun {
@@ -110,6 +112,9 @@ inline ShearBoxRun run_shear_box(const ShearBoxOptions& o) {
         z[static_cast<std::size_t>(Hypoplasticity::h_index + 3)] = R / std::sqrt(2.0);
         return z;
     };
+    if (o.adjust) {
+        o.adjust(c);
+    }
     solver.add_contact(c);
 
     Stage st;
@@ -133,6 +138,8 @@ inline ShearBoxRun run_shear_box(const ShearBoxOptions& o) {
     if (!res.ok) {
         run.ok = false;
         run.reason = res.reason;
+        run.u = solver.displacement();
+        run.counters = solver.counters();
         return run;
     }
     st.name = "shear";

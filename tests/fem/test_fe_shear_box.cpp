@@ -116,6 +116,30 @@ TEST(FeShearBox, Eq37JacobianConvergesInFewerIterationsThanAnalyticalB3) {
     EXPECT_LT(total_a, total_b);
 }
 
+// A hard case ends in a defined state: when Algorithm 1 cannot meet its tolerance (here: one
+// Newton iteration allowed for a tolerance of 1e-12), the solver halves the increment, then
+// stops with a reason naming the pair, the point and the cause; nothing non-finite is committed.
+TEST(FeShearBox, FailingInterfacePointStopsTheRunWithADiagnostic) {
+    ShearBoxOptions o;
+    o.steps = 4;
+    o.adjust = [](ContactPairSpec& c) {
+        c.options.interface.tolerance = 1.0e-12;
+        c.options.interface.max_newton_iterations = 1;
+        c.options.interface.polish_iterations = 0;
+    };
+    const ShearBoxRun r = run_shear_box(o);
+    ASSERT_FALSE(r.ok);
+    EXPECT_NE(r.reason.find("contact pair 'interface'"), std::string::npos) << r.reason;
+    EXPECT_NE(r.reason.find("failed in Algorithm 1"), std::string::npos) << r.reason;
+    EXPECT_NE(r.reason.find("halving the step"), std::string::npos) << r.reason;
+    EXPECT_GT(r.counters.contact_failures, 0);
+    std::printf("%s\n", r.reason.c_str());
+    ASSERT_FALSE(r.u.empty());
+    for (double v : r.u) {
+        EXPECT_TRUE(std::isfinite(v));
+    }
+}
+
 TEST(FeShearBox, OneAndTwoThreadsGiveBitwiseEqualDisplacements) {
     ShearBoxOptions o;
     o.steps = 4;
