@@ -1,6 +1,5 @@
 #include "fem/contact_pair.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -8,24 +7,12 @@
 
 #include "engine/coulomb_contact.hpp"
 #include "fem/contact_assembly.hpp"
+#include "fem/phase_timer.hpp"
 
 namespace ifsim::fem {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using Vec3 = std::array<double, 3>;
-
-class PhaseTimer {
-public:
-    explicit PhaseTimer(double& sink) : sink_(sink), t0_(Clock::now()) {}
-    ~PhaseTimer() { sink_ += std::chrono::duration<double>(Clock::now() - t0_).count(); }
-    PhaseTimer(const PhaseTimer&) = delete;
-    PhaseTimer& operator=(const PhaseTimer&) = delete;
-
-private:
-    double& sink_;
-    Clock::time_point t0_;
-};
 
 double dot(const Vec3& a, const Vec3& b) {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -205,9 +192,24 @@ protected:
         return {spec_.normal_penalty * g, spec_.normal_penalty};
     }
 
-    void update_gaps(const std::vector<double>& du) {
+    // Gaps for the trial increment into the engine's input columns (the column indices of
+    // its point layout: t_N, k_N, dg1, dg2), the frame of every point.
+    template <class Points>
+    void gather_gaps(const std::vector<double>& du, Points& cp, int col_t_N, int col_k_N,
+                     int col_dg1, int col_dg2) {
         kin_->update_gaps(du);
         scratch_.resize(du.size());
+        for (std::size_t i = 0; i < kin_->n_points(); ++i) {
+            const PointFrame& f = frames_[i];
+            cp.set_frame(i, f.n.data(), f.t1.data(), f.t2.data());
+            const auto [t_N, k_N] = penalty(i);
+            const auto dg = f.to_local(kin_->point(i).dg_T);
+            const bool active = kin_->point(i).active;
+            cp.input(col_t_N)[i] = t_N;
+            cp.input(col_k_N)[i] = k_N;
+            cp.input(col_dg1)[i] = active ? dg[0] : 0.0;
+            cp.input(col_dg2)[i] = active ? dg[1] : 0.0;
+        }
     }
 
     // Engine outputs (local traction, Jacobian columns) of point i into the kinematic frame.
@@ -259,18 +261,8 @@ public:
                   std::string&) override {
         {
             PhaseTimer timer(timers_.gather);
-            update_gaps(du);
-            for (std::size_t i = 0; i < kin_->n_points(); ++i) {
-                const PointFrame& f = frames_[i];
-                points_.set_frame(i, f.n.data(), f.t1.data(), f.t2.data());
-                const auto [t_N, k_N] = penalty(i);
-                const auto dg = f.to_local(kin_->point(i).dg_T);
-                const bool active = kin_->point(i).active;
-                points_.input(coulomb_col::t_N)[i] = t_N;
-                points_.input(coulomb_col::k_N)[i] = k_N;
-                points_.input(coulomb_col::dg1)[i] = active ? dg[0] : 0.0;
-                points_.input(coulomb_col::dg2)[i] = active ? dg[1] : 0.0;
-            }
+            gather_gaps(du, points_, coulomb_col::t_N, coulomb_col::k_N, coulomb_col::dg1,
+                        coulomb_col::dg2);
         }
         CoulombContactReport rep;
         {
@@ -320,17 +312,9 @@ public:
                   std::string& error) override {
         {
             PhaseTimer timer(timers_.gather);
-            update_gaps(du);
+            gather_gaps(du, points_, contact_col::t_N, contact_col::k_N, contact_col::dg1,
+                        contact_col::dg2);
             for (std::size_t i = 0; i < kin_->n_points(); ++i) {
-                const PointFrame& f = frames_[i];
-                points_.set_frame(i, f.n.data(), f.t1.data(), f.t2.data());
-                const auto [t_N, k_N] = penalty(i);
-                const auto dg = f.to_local(kin_->point(i).dg_T);
-                const bool active = kin_->point(i).active;
-                points_.input(contact_col::t_N)[i] = t_N;
-                points_.input(contact_col::k_N)[i] = k_N;
-                points_.input(contact_col::dg1)[i] = active ? dg[0] : 0.0;
-                points_.input(contact_col::dg2)[i] = active ? dg[1] : 0.0;
                 points_.input(contact_col::s_p1)[i] = local_stress_[i][1];
                 points_.input(contact_col::s_p2)[i] = local_stress_[i][2];
             }

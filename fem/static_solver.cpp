@@ -1,7 +1,6 @@
 #include "fem/static_solver.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -13,24 +12,10 @@
 
 #include "fem/element_kernels.hpp"
 #include "fem/loads.hpp"
+#include "fem/phase_timer.hpp"
 
 namespace ifsim::fem {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-// Adds the time since construction to a phase timer.
-class PhaseTimer {
-public:
-    explicit PhaseTimer(double& sink) : sink_(sink), t0_(Clock::now()) {}
-    ~PhaseTimer() { sink_ += std::chrono::duration<double>(Clock::now() - t0_).count(); }
-    PhaseTimer(const PhaseTimer&) = delete;
-    PhaseTimer& operator=(const PhaseTimer&) = delete;
-
-private:
-    double& sink_;
-    Clock::time_point t0_;
-};
 
 double norm2(std::span<const double> v) {
     double s = 0.0;

@@ -37,10 +37,15 @@ SlideResult slide(int dim) {
     LinearElasticParams elastic;
     elastic.E = 1.0e4;
     elastic.nu = 0.3;
-    ElementSetMaterial plate{"plate", elastic, {0, 0, 0, 0, 0, 0, 0.5}};
+    ElementSetMaterial plate;
+    plate.element_set = "plate";
+    plate.material = elastic;
+    plate.initial_state = {0, 0, 0, 0, 0, 0, 0.5};
     std::vector<double> y{0, 0, 0, 0, 0, 0, 0.5};
     y[static_cast<std::size_t>(vert)] = -100.0; // the block starts under the 100 kPa it carries
-    ElementSetMaterial block{"block", elastic, y};
+    ElementSetMaterial block = plate;
+    block.element_set = "block";
+    block.initial_state = y;
     StaticSolver solver(mesh, {plate, block}, SolverSettings{});
     ContactPairSpec c;
     c.slave_faces = "block.bottom";
