@@ -2,9 +2,9 @@
 // The batched update of contact points: every point runs Algorithm 1 for its base evaluation
 // and, for the Jacobian, for its perturbed evaluations (paper Eq. 37: 2 ndim + 1 evaluations,
 // theta = `perturbation`). The perturbed evaluations are lanes like the base ones: a point
-// expands into L lanes of a lane buffer; TBB runs chunks of points, xsimd runs across lanes;
-// lanes converge independently under masks. Results are bitwise independent of the thread count
-// (fixed chunks, per-point results, reductions in point order).
+// expands into L lanes of a lane buffer; TBB runs chunks of points, xsimd runs across lanes,
+// packed into batches by expected work (engine/contact_lanes.hpp). Results are bitwise
+// independent of the thread count (fixed chunks, per-point results, reductions in point order).
 //
 // Jacobian schemes:
 //   perturbation       Eq. 37, forward differences of the whole Algorithm 1 (state not perturbed)
@@ -29,6 +29,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
+#include "engine/contact_lanes.hpp"
 #include "engine/contact_points.hpp"
 #include "kernels/interface_algorithm1.hpp"
 
@@ -61,74 +62,6 @@ struct ContactReport {
     bool ok() const { return failed == 0; }
 };
 
-namespace detail {
-
-// Lane buffer columns: inputs, state, results.
-namespace lane_col {
-inline constexpr int t_N = 0, dg1 = 1, dg2 = 2, s_p1 = 3, s_p2 = 4, forced = 5;
-inline constexpr int status = 6, subincrements = 7, newton = 8, evaluations = 9, msub = 10,
-                     residual = 11, open = 12, cause = 13, band_clamped = 14;
-inline constexpr int state = 15; // then NS + 6 state columns
-} // namespace lane_col
-
-template <class M, class T>
-void run_lanes(const typename M::Params& mp, const InterfaceSettings& s, ColumnStore& lanes,
-               std::size_t begin, std::size_t end) {
-    constexpr int NS = M::n_state;
-    constexpr std::size_t W = simd::width_v<T>;
-    using namespace lane_col;
-    auto load = [&](int c, std::size_t i) {
-        if constexpr (W == 1) {
-            return lanes.col(c)[i];
-        } else {
-            return T::load_aligned(lanes.col(c) + i);
-        }
-    };
-    auto store = [&](int c, std::size_t i, const T& v) {
-        if constexpr (W == 1) {
-            lanes.col(c)[i] = v;
-        } else {
-            v.store_aligned(lanes.col(c) + i);
-        }
-    };
-    for (std::size_t i = begin; i < end; i += W) {
-        InterfaceState<T, NS> st;
-        for (int k = 0; k < NS; ++k) {
-            st.y[k] = load(state + k, i);
-        }
-        st.eps_n = load(state + NS + contact_state::eps_n, i);
-        st.eps_p1 = load(state + NS + contact_state::eps_p1, i);
-        st.eps_p2 = load(state + NS + contact_state::eps_p2, i);
-        st.gamma1 = load(state + NS + contact_state::gamma1, i);
-        st.gamma2 = load(state + NS + contact_state::gamma2, i);
-        st.last_subincrement = load(state + NS + contact_state::last_sub, i);
-        const InterfaceInput<T> in{load(t_N, i),  load(dg1, i),  load(dg2, i),
-                                   load(s_p1, i), load(s_p2, i), load(forced, i)};
-        InterfaceStats<T> stats;
-        interface_update<M, T>(mp, s, st, in, stats);
-        for (int k = 0; k < NS; ++k) {
-            store(state + k, i, st.y[k]);
-        }
-        store(state + NS + contact_state::eps_n, i, st.eps_n);
-        store(state + NS + contact_state::eps_p1, i, st.eps_p1);
-        store(state + NS + contact_state::eps_p2, i, st.eps_p2);
-        store(state + NS + contact_state::gamma1, i, st.gamma1);
-        store(state + NS + contact_state::gamma2, i, st.gamma2);
-        store(state + NS + contact_state::last_sub, i, st.last_subincrement);
-        store(status, i, stats.status);
-        store(subincrements, i, stats.subincrements);
-        store(newton, i, stats.newton_iterations);
-        store(evaluations, i, stats.evaluations);
-        store(msub, i, stats.model_substeps);
-        store(residual, i, stats.residual);
-        store(open, i, stats.open);
-        store(cause, i, stats.cause);
-        store(band_clamped, i, stats.band_clamped);
-    }
-}
-
-} // namespace detail
-
 // Batched contact update with Jacobian columns.
 //
 // Lane layout: block k of the lane buffer holds lanes [k P, (k+1) P): block 0 the base
@@ -160,11 +93,15 @@ public:
             ((opt.chunk_points + simd::lanes - 1) / simd::lanes) * simd::lanes;
         const std::size_t n_chunks = (P + chunk - 1) / chunk;
 
-        auto run_block = [&](int k, std::size_t b, std::size_t e) {
+        if (order_.size() != P * blocks) {
+            order_.assign(P * blocks, detail::LaneKey{});
+        }
+        auto run = [&](detail::LaneKey* keys, std::size_t n) {
             if (opt.simd) {
-                detail::run_lanes<M, simd::batch>(mp, opt.interface, lanes_, k * P + b, k * P + e);
+                detail::order_by_work<M>(opt.interface, lanes_, keys, n);
+                detail::run_lanes_packed<M>(mp, opt.interface, lanes_, {keys, n});
             } else {
-                detail::run_lanes<M, double>(mp, opt.interface, lanes_, k * P + b, k * P + e);
+                detail::run_lanes_scalar<M>(mp, opt.interface, lanes_, {keys, n});
             }
         };
         tbb::parallel_for(
@@ -173,12 +110,23 @@ public:
                 for (std::size_t c = r.begin(); c != r.end(); ++c) {
                     const std::size_t b = c * chunk;
                     const std::size_t e = b + chunk < P ? b + chunk : P;
+                    const std::size_t m = e - b;
+                    // The chunk's lanes in order_[b blocks, e blocks): base lanes first (the
+                    // perturbed ones take their sub-increment counts), then every perturbed
+                    // lane of the chunk as one queue, so lanes of equal work from different
+                    // blocks share batches.
+                    detail::LaneKey* keys = order_.data() + b * blocks;
+                    for (int k = 0; k < blocks; ++k) {
+                        for (std::size_t i = b; i < e; ++i) {
+                            keys[k * m + (i - b)].lane = k * P + i;
+                        }
+                    }
                     gather(cp, opt, P, 0, ndim, b, e);
-                    run_block(0, b, e);
+                    run(keys, m);
                     for (int k = 1; k < blocks; ++k) {
                         gather(cp, opt, P, k, ndim, b, e);
-                        run_block(k, b, e);
                     }
+                    run(keys + m, (blocks - 1) * m);
                     scatter(cp, mp, opt, P, blocks, ref, b, e);
                 }
             },
@@ -353,6 +301,7 @@ private:
     }
 
     ColumnStore lanes_;
+    std::vector<detail::LaneKey> order_; // lane order per chunk, reused like lanes_
 };
 
 } // namespace ifsim

@@ -1,155 +1,306 @@
 #pragma once
 // Algorithm 1 of the paper (§3.5): a continuum model M used as interface model. The shear
 // strain increment (Eq. 25) is split into sub-increments; inside each, a Newton iteration on the
-// interface normal strains (Eqs. 21-23) drives the interface normal stresses to their targets
-// (Eqs. 18-20: sigma_N = t_N and, for the novel formulation, sigma_p1/p2 = extrapolated
-// continuum stress), with the shear stresses of the last converged state carried along
-// (Eqs. 24, 27). The model is called unchanged through material_update(), so any constitutive
-// model of the material engine plugs in.
+// interface normal strains (Eqs. 21-23, kernels/interface_newton.hpp) drives the interface
+// normal stresses to their targets (Eqs. 18-20: sigma_N = t_N and, for the novel formulation,
+// sigma_p1/p2 = extrapolated continuum stress), with the shear stresses of the last converged
+// state carried along (Eqs. 24, 27). The model is called unchanged through material_update(),
+// so any constitutive model of the material engine plugs in.
 //
 // Per lane: own number of sub-increments, own Newton convergence (masks); a lane that fails
 // (Newton not converged, model failure, band collapse) keeps its start state and reports
 // status failed so the caller can cut the increment.
+//
+// The algorithm is split into interface_begin (set-up), interface_step (one sub-increment) and
+// interface_end (result) around a carried Algorithm1Lane, so that an engine can gather lanes
+// from anywhere into a SIMD batch (engine/contact_lanes.hpp). A lane's arithmetic depends only
+// on its own data: it gives the same bits in any slot and next to any neighbours.
 
 #include <array>
 
+#include "kernels/interface_newton.hpp"
 #include "kernels/interface_settings.hpp"
 #include "kernels/material_update.hpp"
-#include "kernels/small_solve.hpp"
 
 namespace ifsim {
 
-// Number of normal-strain unknowns: Stutz: eps_N; novel 2D: eps_N, eps_p1; novel 3D: all three.
-inline int interface_unknowns(const InterfaceSettings& s) {
-    return s.formulation == InterfaceFormulation::stutz ? 1 : (s.ndim == 2 ? 2 : 3);
-}
-
+// What the sub-increment loop carries from one sub-increment to the next.
 template <class T, int NS>
-struct SubincrementResult {
-    StateVec<T, NS> y;
-    std::array<T, 3> x{T(0.0), T(0.0), T(0.0)}; // converged normal strain increments
-    simd::mask_t<T> converged{};
-    simd::mask_t<T> model_failed{};
-    T residual = T(0.0);
+struct Algorithm1Lane {
+    using Mask = simd::mask_t<T>;
+    InterfaceState<T, NS> cur; // state after the last accepted sub-increment
+    InterfaceStats<T> stats;
+    std::array<T, 3> target_start{}, target_end{};
+    std::array<T, 3> x_rate{}; // normal strain increment per unit fraction
+    T dgam1 = T(0.0), dgam2 = T(0.0), total = T(0.0);
+    T h = T(1.0), t = T(0.0), last_h = T(1.0);
+    T cause = T(0.0);
+    T count = T(0.0); // sub-increments tried (guard max_subincrements)
+    Mask finite_in{}, below{}, open{}, run{}, forced{}, active{}, failed{};
 };
 
-// The strain increment of one Newton iterate: normal parts from x, shear from the
-// sub-increment of shear strain (tensor components gamma/2), Eq. 27.
-template <class T>
-Sym<T> interface_strain_increment(int k, const std::array<T, 3>& x, const T& dgam1,
-                                  const T& dgam2) {
-    return {x[0], k >= 2 ? x[1] : T(0.0), k >= 3 ? x[2] : T(0.0), 0.5 * dgam1, 0.5 * dgam2, T(0.0)};
+// Calls f(a_field, b_field) for every field of two carries (of different value types, e.g. a
+// batch and one lane); the engine moves lanes in and out of batches with it.
+template <class A, class B, class F>
+void zip_fields(A& a, B& b, F&& f) {
+    for (std::size_t k = 0; k < a.cur.y.size(); ++k) {
+        f(a.cur.y[k], b.cur.y[k]);
+    }
+    f(a.cur.eps_n, b.cur.eps_n);
+    f(a.cur.eps_p1, b.cur.eps_p1);
+    f(a.cur.eps_p2, b.cur.eps_p2);
+    f(a.cur.gamma1, b.cur.gamma1);
+    f(a.cur.gamma2, b.cur.gamma2);
+    f(a.cur.last_subincrement, b.cur.last_subincrement);
+    f(a.stats.status, b.stats.status);
+    f(a.stats.subincrements, b.stats.subincrements);
+    f(a.stats.newton_iterations, b.stats.newton_iterations);
+    f(a.stats.evaluations, b.stats.evaluations);
+    f(a.stats.model_substeps, b.stats.model_substeps);
+    f(a.stats.residual, b.stats.residual);
+    f(a.stats.open, b.stats.open);
+    f(a.stats.cause, b.stats.cause);
+    f(a.stats.band_clamped, b.stats.band_clamped);
+    for (int c = 0; c < 3; ++c) {
+        f(a.target_start[c], b.target_start[c]);
+        f(a.target_end[c], b.target_end[c]);
+        f(a.x_rate[c], b.x_rate[c]);
+    }
+    f(a.dgam1, b.dgam1);
+    f(a.dgam2, b.dgam2);
+    f(a.total, b.total);
+    f(a.h, b.h);
+    f(a.t, b.t);
+    f(a.last_h, b.last_h);
+    f(a.cause, b.cause);
+    f(a.count, b.count);
+    f(a.finite_in, b.finite_in);
+    f(a.below, b.below);
+    f(a.open, b.open);
+    f(a.run, b.run);
+    f(a.forced, b.forced);
+    f(a.active, b.active);
+    f(a.failed, b.failed);
 }
 
-// One sub-increment: Newton on the normal strains from y0 (Algorithm 1 lines 3-10).
+template <class T>
+T band_floor(const InterfaceSettings& s) {
+    return T(s.min_band_fraction * s.shear_band_thickness);
+}
+
+// Set-up of one evaluation: band thickness, shear strain increment, targets and the first
+// sub-increment size. Lanes that do not run (open, invalid input, collapsed band) start
+// inactive.
 template <class M, class T>
-SubincrementResult<T, M::n_state>
-solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
-                   const StateVec<T, M::n_state>& y0, const std::array<T, 3>& x_guess,
-                   const T& dgam1, const T& dgam2, const std::array<T, 3>& target,
-                   const simd::mask_t<T>& active, InterfaceStats<T>& stats) {
+Algorithm1Lane<T, M::n_state> interface_begin(const InterfaceSettings& s,
+                                              const InterfaceState<T, M::n_state>& st,
+                                              const InterfaceInput<T>& in) {
     using Mask = simd::mask_t<T>;
     constexpr int NS = M::n_state;
     const int k = interface_unknowns(s);
-    T ref = target[0] * target[0];
-    for (int c = 1; c < k; ++c) {
-        ref += target[c] * target[c];
+    Algorithm1Lane<T, NS> c;
+
+    c.finite_in = simd::isfinite(in.t_N) && simd::isfinite(in.dg1) && simd::isfinite(in.dg2) &&
+                  simd::isfinite(in.s_p1) && simd::isfinite(in.s_p2) && state_finite<T, NS>(st.y);
+    // Eq. 26: band thickness following the interface normal strain.
+    const T d_s_eq26 = s.shear_band_thickness * (1.0 + st.eps_n);
+    c.below = !(d_s_eq26 > band_floor<T>(s));
+    const Mask band_ok = s.clamp_band ? Mask(true) : !c.below;
+    const T d_s = simd::select(c.below, band_floor<T>(s), d_s_eq26);
+    // Contact open (no compression to carry): the point keeps its state and transmits nothing.
+    // The threshold sits above the models' pressure floor so that an almost open contact is
+    // not driven into the floor by the in-plane stresses (K0 < 1 lowers p below t_N).
+    c.open = in.t_N > -s.open_threshold;
+    c.run = c.finite_in && band_ok && !c.open;
+
+    // Eq. 25: tan(delta gamma) = delta g_T / d_s.
+    const T safe_ds = simd::select(band_ok, d_s, T(s.shear_band_thickness));
+    c.dgam1 = simd::select(c.run, simd::atan(in.dg1 / safe_ds), T(0.0));
+    c.dgam2 = (s.ndim == 2) ? T(0.0) : simd::select(c.run, simd::atan(in.dg2 / safe_ds), T(0.0));
+    c.total = simd::max(simd::abs(c.dgam1), simd::abs(c.dgam2));
+
+    // Targets of Eqs. 18-20 are met at the end of the increment; the sub-increments in between
+    // follow a straight path from the start values (sigma_N, sigma_p1, sigma_p2 of the converged
+    // state), so a change of t_N or of the continuum stress is spread over the sub-increments
+    // instead of being forced into the first one.
+    c.target_end = {in.t_N, in.s_p1, in.s_p2};
+    c.target_start = {st.y[0], st.y[1], st.y[2]};
+    // Sub-increments needed for the change of the normal targets: at most max_normal_change of
+    // the stress per sub-increment (a change of t_N without shear would otherwise be one step).
+    T dtarget = T(0.0);
+    T tnorm = T(0.0);
+    for (int i = 0; i < k; ++i) {
+        dtarget = simd::max(dtarget, simd::abs(c.target_end[i] - c.target_start[i]));
+        tnorm += c.target_end[i] * c.target_end[i];
     }
-    ref = simd::max(simd::sqrt(ref), T(1.0e-3));
+    tnorm = simd::max(simd::sqrt(tnorm), T(1.0));
+    const T n_normal =
+        simd::select(c.run, simd::ceil(dtarget / (s.max_normal_change * tnorm)), T(1.0));
 
-    SubincrementResult<T, NS> out;
-    out.y = y0;
-    out.converged = !active;
-    out.model_failed = Mask(false);
-    std::array<T, 3> x = x_guess;
-    const SubstepControl<T> adaptive_ctl{};
-    Mask failed(false); // lanes whose model update or Newton matrix failed
-    // Lanes below the tolerance that still take their polishing corrections.
-    T polish_left = T(static_cast<double>(s.polish_iterations));
-    Mask met(false);
-    for (int it = 0; it <= s.max_newton_iterations + s.polish_iterations; ++it) {
-        const Mask working = active && !out.converged && !failed;
-        if (simd::none(working)) {
-            break;
-        }
-        const Sym<T> de = interface_strain_increment(k, x, dgam1, dgam2);
-        StateVec<T, NS> yt = y0;
-        UpdateStats<T> ms;
-        material_update<M, T>(mp, s.model, adaptive_ctl, yt, de, ms);
-        stats.evaluations += simd::select(working, T(1.0), T(0.0));
-        stats.model_substeps += simd::select(working, ms.substeps, T(0.0));
-
-        std::array<T, 3> res{T(0.0), T(0.0), T(0.0)};
-        T r2 = T(0.0);
-        for (int c = 0; c < k; ++c) {
-            res[c] = yt[c] - target[c];
-            r2 += res[c] * res[c];
-        }
-        const T r = simd::sqrt(r2) / ref;
-        const Mask model_ok = ms.status > -0.5;
-        met = met || (working && model_ok && (r < s.tolerance));
-        const Mask now = working && model_ok && met && (polish_left < 0.5);
-        out.y = select_state<T, NS>(now, yt, out.y);
-        for (int c = 0; c < 3; ++c) {
-            out.x[c] = simd::select(now, x[c], out.x[c]);
-        }
-        out.residual = simd::select(now, r, out.residual);
-        out.converged = out.converged || now;
-        failed = failed || (working && !model_ok);
-        out.model_failed = out.model_failed || (working && !model_ok);
-        const Mask iterate = working && !now && model_ok;
-        polish_left = simd::select(iterate && met, polish_left - 1.0, polish_left);
-        if (simd::none(iterate) || it == s.max_newton_iterations + s.polish_iterations) {
-            // Lanes that met the tolerance but ran out of iterations keep their last iterate.
-            const Mask take = iterate && met;
-            out.y = select_state<T, NS>(take, yt, out.y);
-            for (int c = 0; c < 3; ++c) {
-                out.x[c] = simd::select(take, x[c], out.x[c]);
-            }
-            out.converged = out.converged || take;
-            out.residual = simd::select(iterate, r, out.residual);
-            break;
-        }
-
-        // Jacobian d sigma_normal / d eps_normal (Eq. 22).
-        std::array<std::array<T, 3>, 3> J{};
-        if (s.newton_jacobian == NewtonJacobian::rate) {
-            const auto cols = M::template rate_stiffness<T>(mp, s.model, y0, de);
-            for (int rr = 0; rr < k; ++rr) {
-                for (int c = 0; c < k; ++c) {
-                    J[rr][c] = cols[c][rr];
-                }
-            }
-        } else {
-            // Same number of equal substeps as the base, so the quotient sees no step noise.
-            SubstepControl<T> fixed;
-            fixed.fixed_substeps = simd::max(ms.substeps, T(1.0));
-            const T delta = s.newton_perturbation * simd::max(voigt::norm(de), T(1.0e-9));
-            StateVec<T, NS> yb = y0;
-            UpdateStats<T> bs;
-            material_update<M, T>(mp, s.model, fixed, yb, de, bs);
-            stats.evaluations += simd::select(iterate, T(1.0), T(0.0));
-            for (int c = 0; c < k; ++c) {
-                Sym<T> dp = de;
-                dp[c] += delta;
-                StateVec<T, NS> yp = y0;
-                UpdateStats<T> ps;
-                material_update<M, T>(mp, s.model, fixed, yp, dp, ps);
-                stats.evaluations += simd::select(iterate, T(1.0), T(0.0));
-                for (int rr = 0; rr < k; ++rr) {
-                    J[rr][c] = (yp[rr] - yb[rr]) / delta;
-                }
-            }
-        }
-        const SmallSolve<T> sol = small_solve<T>(k, J, res);
-        failed = failed || (iterate && !sol.solved);
-        const Mask step = iterate && sol.solved;
-        for (int c = 0; c < k; ++c) {
-            x[c] = simd::select(step, x[c] - sol.x[c], x[c]);
-        }
-        stats.newton_iterations += simd::select(step, T(1.0), T(0.0));
+    // Sub-increment size as a fraction of the increment. Fixed: n_sub = ceil(total / max).
+    c.forced = in.forced_subincrements > 0.5;
+    const T n_fixed = simd::select(
+        c.forced, in.forced_subincrements,
+        simd::max(simd::max(simd::ceil(c.total / s.max_subincrement), n_normal), T(1.0)));
+    c.h = 1.0 / n_fixed;
+    if (s.adaptive && !simd::all(c.forced)) {
+        // Start from the last accepted size (in units of max_subincrement) or the paper's size.
+        const T last = simd::select(st.last_subincrement > 0.0, st.last_subincrement, T(1.0));
+        const T frac = last * s.max_subincrement / simd::max(c.total, T(1.0e-300));
+        const T h0 = simd::min(T(1.0), simd::select(c.total > 0.0, frac, T(1.0)));
+        c.h = simd::select(c.forced, c.h, simd::min(h0, 1.0 / simd::max(n_normal, T(1.0))));
     }
-    return out;
+
+    c.cur = st;
+    c.last_h = c.h;
+    c.active = c.run;
+    c.failed = !c.finite_in || !band_ok;
+    c.cause = simd::select(!c.finite_in, T(interface_failure::non_finite_input),
+                           simd::select(!band_ok, T(interface_failure::band_collapse), T(0.0)));
+    return c;
+}
+
+// One sub-increment (Algorithm 1 lines 2-13) for the active lanes; the others are unchanged.
+// A lane becomes inactive when it reaches the end of the increment or fails.
+template <class M, class T>
+void interface_step(const typename M::Params& mp, const InterfaceSettings& s,
+                    Algorithm1Lane<T, M::n_state>& c) {
+    using Mask = simd::mask_t<T>;
+    constexpr int NS = M::n_state;
+    const int k = interface_unknowns(s);
+    // Forced lanes (uniform sub-increments) give the same result on either branch; the step
+    // doubling runs only when some lane needs it.
+    const bool adaptive = s.adaptive && simd::any(c.active && !c.forced);
+    auto target_at = [&](const T& frac) {
+        std::array<T, 3> tg;
+        for (int i = 0; i < 3; ++i) {
+            tg[i] = c.target_start[i] + (c.target_end[i] - c.target_start[i]) * frac;
+        }
+        return tg;
+    };
+    // Records the first reason a lane fails.
+    auto fail = [&](const Mask& m, double code) {
+        c.cause = simd::select(m && !c.failed, T(code), c.cause);
+        c.failed = c.failed || m;
+    };
+    const Mask tried = c.active;
+    const T hl = simd::select(c.active, simd::min(c.h, T(1.0) - c.t), T(0.0));
+    std::array<T, 3> guess;
+    for (int i = 0; i < 3; ++i) {
+        guess[i] = c.x_rate[i] * hl;
+    }
+    const T t_end = simd::select(hl >= (T(1.0) - c.t), T(1.0), c.t + hl);
+    const auto full = solve_subincrement<M, T>(mp, s, c.cur.y, guess, c.dgam1 * hl, c.dgam2 * hl,
+                                               target_at(t_end), c.active, c.stats);
+    Mask accept = c.active && full.converged;
+    StateVec<T, NS> y_new = full.y;
+    std::array<T, 3> x_new = full.x;
+    T next_h = c.h;
+    if (adaptive) {
+        // Step doubling: two half sub-increments against the full one.
+        const T hh = 0.5 * hl;
+        std::array<T, 3> g2;
+        for (int i = 0; i < 3; ++i) {
+            g2[i] = 0.5 * full.x[i];
+        }
+        const auto a = solve_subincrement<M, T>(mp, s, c.cur.y, g2, c.dgam1 * hh, c.dgam2 * hh,
+                                                target_at(c.t + hh), accept && !c.forced, c.stats);
+        const auto b = solve_subincrement<M, T>(mp, s, a.y, a.x, c.dgam1 * hh, c.dgam2 * hh,
+                                                target_at(t_end), accept && a.converged, c.stats);
+        const Mask both = accept && a.converged && b.converged;
+        // Error of the shear stresses (the normal ones are pinned by Eqs. 18-20).
+        const T dt1 = b.y[3] - full.y[3];
+        const T dt2 = b.y[4] - full.y[4];
+        const T scale = simd::max(voigt::norm(stress_of(b.y)), T(1.0e-3));
+        const T err = simd::sqrt(dt1 * dt1 + dt2 * dt2) / scale;
+        const Mask accurate = (err <= s.adaptive_tolerance) || c.forced;
+        const T q = 0.9 * simd::sqrt(s.adaptive_tolerance / simd::max(err, T(1.0e-30)));
+        // Forced lanes (uniform sub-increments) take the full sub-increment as it is.
+        accept = simd::select_mask(c.forced, accept, both && accurate);
+        y_new = select_state<T, NS>(c.forced, full.y, b.y);
+        for (int i = 0; i < 3; ++i) {
+            x_new[i] = simd::select(c.forced, full.x[i], a.x[i] + b.x[i]);
+        }
+        const T grow = simd::min(T(4.0), simd::max(T(0.2), q));
+        const T shrink = simd::select(both, simd::max(T(0.2), simd::min(q, T(0.5))), T(0.25));
+        next_h = simd::select(c.forced, c.h, simd::select(accept, hl * grow, hl * shrink));
+        // A sub-increment that cannot be made small enough ends the lane as failed.
+        const Mask too_small = c.active && !accept && ((hl * c.total < 1.0e-12) || c.forced);
+        fail(too_small && full.model_failed, interface_failure::model);
+        fail(too_small, interface_failure::newton);
+        c.active = c.active && !too_small;
+    } else {
+        fail(c.active && full.model_failed, interface_failure::model);
+        fail(c.active && !full.converged, interface_failure::newton);
+        c.active = c.active && full.converged;
+    }
+    // Eq. 26 within the increment: a sub-increment that takes d_s below its floor ends the
+    // lane (band collapse) unless the floor is to be held.
+    if (!s.clamp_band) {
+        const Mask collapses =
+            accept && !(s.shear_band_thickness * (1.0 + c.cur.eps_n + x_new[0]) > band_floor<T>(s));
+        fail(collapses, interface_failure::band_collapse);
+        accept = accept && !collapses;
+        c.active = c.active && !collapses;
+    }
+    // Algorithm 1 lines 11-13: save strain, state and stress of the converged sub-increment.
+    y_new[5] = T(0.0); // Eq. 17: no t1-t2 shear in the interface
+    c.cur.y = select_state<T, NS>(accept, y_new, c.cur.y);
+    c.cur.eps_n = simd::select(accept, c.cur.eps_n + x_new[0], c.cur.eps_n);
+    if (k >= 2) {
+        c.cur.eps_p1 = simd::select(accept, c.cur.eps_p1 + x_new[1], c.cur.eps_p1);
+    }
+    if (k >= 3) {
+        c.cur.eps_p2 = simd::select(accept, c.cur.eps_p2 + x_new[2], c.cur.eps_p2);
+    }
+    c.cur.gamma1 = simd::select(accept, c.cur.gamma1 + c.dgam1 * hl, c.cur.gamma1);
+    c.cur.gamma2 = simd::select(accept, c.cur.gamma2 + c.dgam2 * hl, c.cur.gamma2);
+    const T safe_hl = simd::max(hl, T(1.0e-300));
+    for (int i = 0; i < 3; ++i) {
+        c.x_rate[i] = simd::select(accept, x_new[i] / safe_hl, c.x_rate[i]);
+    }
+    // Accepted sub-increments keep the worst converged residual; a failed lane reports the
+    // residual it stopped at, so the diagnostic says how far Eqs. 18-20 were from met.
+    c.stats.residual = simd::select(accept || (c.failed && !full.converged),
+                                    simd::max(c.stats.residual, full.residual), c.stats.residual);
+    c.stats.subincrements += simd::select(accept, T(1.0), T(0.0));
+    c.last_h = simd::select(accept, hl, c.last_h);
+    c.t = simd::select(accept, t_end, c.t);
+    c.h = adaptive ? simd::select(c.active, next_h, c.h) : c.h;
+    c.active = c.active && ((T(1.0) - c.t) > 1.0e-12);
+    c.count += simd::select(tried, T(1.0), T(0.0));
+    const Mask limit = c.active && (c.count > static_cast<double>(s.max_subincrements));
+    fail(limit, interface_failure::subincrement_limit);
+    c.active = c.active && !limit;
+}
+
+// The result of one evaluation: the new state into st (failed and open lanes: unchanged, st
+// must still hold the start state) and the statistics into stats.
+template <class M, class T>
+void interface_end(const InterfaceSettings& s, const Algorithm1Lane<T, M::n_state>& c,
+                   InterfaceState<T, M::n_state>& st, InterfaceStats<T>& stats) {
+    using Mask = simd::mask_t<T>;
+    constexpr int NS = M::n_state;
+    InterfaceState<T, NS> cur = c.cur;
+    if (s.adaptive) {
+        const T used = c.last_h * c.total / s.max_subincrement;
+        cur.last_subincrement = simd::select(c.run && !c.failed && (c.total > 0.0) && !c.forced,
+                                             used, cur.last_subincrement);
+    }
+    stats = c.stats;
+    // Failed lanes keep their start state; open lanes keep theirs and carry no traction.
+    stats.status = simd::select(c.failed, T(lane_status::failed), T(lane_status::ok));
+    stats.open = simd::select(c.open && c.finite_in, T(1.0), T(0.0));
+    stats.cause = simd::select(c.failed, c.cause, T(0.0));
+    stats.band_clamped = simd::select(c.run && c.below, T(1.0), T(0.0));
+    const Mask keep = c.failed || !c.run;
+    st.y = select_state<T, NS>(keep, st.y, cur.y);
+    st.eps_n = simd::select(keep, st.eps_n, cur.eps_n);
+    st.eps_p1 = simd::select(keep, st.eps_p1, cur.eps_p1);
+    st.eps_p2 = simd::select(keep, st.eps_p2, cur.eps_p2);
+    st.gamma1 = simd::select(keep, st.gamma1, cur.gamma1);
+    st.gamma2 = simd::select(keep, st.gamma2, cur.gamma2);
+    st.last_subincrement = simd::select(keep, st.last_subincrement, cur.last_subincrement);
 }
 
 // The whole Algorithm 1 for one evaluation (one global increment) of an interface point.
@@ -158,195 +309,11 @@ template <class M, class T>
 void interface_update(const typename M::Params& mp, const InterfaceSettings& s,
                       InterfaceState<T, M::n_state>& st, const InterfaceInput<T>& in,
                       InterfaceStats<T>& stats) {
-    using Mask = simd::mask_t<T>;
-    constexpr int NS = M::n_state;
-    const int k = interface_unknowns(s);
-    stats = InterfaceStats<T>{};
-
-    const Mask finite_in = simd::isfinite(in.t_N) && simd::isfinite(in.dg1) &&
-                           simd::isfinite(in.dg2) && simd::isfinite(in.s_p1) &&
-                           simd::isfinite(in.s_p2) && state_finite<T, NS>(st.y);
-    // Eq. 26: band thickness following the interface normal strain.
-    const T d_s_floor = T(s.min_band_fraction * s.shear_band_thickness);
-    const T d_s_eq26 = s.shear_band_thickness * (1.0 + st.eps_n);
-    const Mask below = !(d_s_eq26 > d_s_floor);
-    const Mask band_ok = s.clamp_band ? Mask(true) : !below;
-    const T d_s = simd::select(below, d_s_floor, d_s_eq26);
-    // Contact open (no compression to carry): the point keeps its state and transmits nothing.
-    // The threshold sits above the models' pressure floor so that an almost open contact is
-    // not driven into the floor by the in-plane stresses (K0 < 1 lowers p below t_N).
-    const Mask open = in.t_N > -s.open_threshold;
-    const Mask run = finite_in && band_ok && !open;
-
-    // Eq. 25: tan(delta gamma) = delta g_T / d_s.
-    const T safe_ds = simd::select(band_ok, d_s, T(s.shear_band_thickness));
-    const T dgam1 = simd::select(run, simd::atan(in.dg1 / safe_ds), T(0.0));
-    const T dgam2 =
-        (s.ndim == 2) ? T(0.0) : simd::select(run, simd::atan(in.dg2 / safe_ds), T(0.0));
-    const T total = simd::max(simd::abs(dgam1), simd::abs(dgam2));
-
-    // Targets of Eqs. 18-20 are met at the end of the increment; the sub-increments in between
-    // follow a straight path from the start values (sigma_N, sigma_p1, sigma_p2 of the converged
-    // state), so a change of t_N or of the continuum stress is spread over the sub-increments
-    // instead of being forced into the first one.
-    const std::array<T, 3> target_end = {in.t_N, in.s_p1, in.s_p2};
-    const std::array<T, 3> target_start = {st.y[0], st.y[1], st.y[2]};
-    auto target_at = [&](const T& frac) {
-        std::array<T, 3> tg;
-        for (int c = 0; c < 3; ++c) {
-            tg[c] = target_start[c] + (target_end[c] - target_start[c]) * frac;
-        }
-        return tg;
-    };
-    // Sub-increments needed for the change of the normal targets: at most max_normal_change of
-    // the stress per sub-increment (a change of t_N without shear would otherwise be one step).
-    T dtarget = T(0.0);
-    T tnorm = T(0.0);
-    for (int c = 0; c < k; ++c) {
-        dtarget = simd::max(dtarget, simd::abs(target_end[c] - target_start[c]));
-        tnorm += target_end[c] * target_end[c];
+    auto c = interface_begin<M, T>(s, st, in);
+    while (simd::any(c.active)) {
+        interface_step<M, T>(mp, s, c);
     }
-    tnorm = simd::max(simd::sqrt(tnorm), T(1.0));
-    const T n_normal =
-        simd::select(run, simd::ceil(dtarget / (s.max_normal_change * tnorm)), T(1.0));
-
-    // Sub-increment size as a fraction of the increment. Fixed: n_sub = ceil(total / max).
-    const Mask forced = in.forced_subincrements > 0.5;
-    const T n_fixed = simd::select(
-        forced, in.forced_subincrements,
-        simd::max(simd::max(simd::ceil(total / s.max_subincrement), n_normal), T(1.0)));
-    T h = 1.0 / n_fixed;
-    const bool adaptive = s.adaptive && !simd::all(forced);
-    if (adaptive) {
-        // Start from the last accepted size (in units of max_subincrement) or the paper's size.
-        const T last = simd::select(st.last_subincrement > 0.0, st.last_subincrement, T(1.0));
-        const T frac = last * s.max_subincrement / simd::max(total, T(1.0e-300));
-        const T h0 = simd::min(T(1.0), simd::select(total > 0.0, frac, T(1.0)));
-        h = simd::select(forced, h, simd::min(h0, 1.0 / simd::max(n_normal, T(1.0))));
-    }
-
-    InterfaceState<T, NS> cur = st;
-    T t = T(0.0);
-    T last_h = h;
-    std::array<T, 3> x_rate{T(0.0), T(0.0), T(0.0)}; // normal strain increment per unit fraction
-    Mask active = run;
-    Mask failed = !finite_in || !band_ok;
-    T cause = simd::select(!finite_in, T(interface_failure::non_finite_input),
-                           simd::select(!band_ok, T(interface_failure::band_collapse), T(0.0)));
-    // Records the first reason a lane fails.
-    auto fail = [&](const Mask& m, double code) {
-        cause = simd::select(m && !failed, T(code), cause);
-        failed = failed || m;
-    };
-    long count = 0;
-    while (simd::any(active)) {
-        const T hl = simd::select(active, simd::min(h, T(1.0) - t), T(0.0));
-        std::array<T, 3> guess;
-        for (int c = 0; c < 3; ++c) {
-            guess[c] = x_rate[c] * hl;
-        }
-        const T t_end = simd::select(hl >= (T(1.0) - t), T(1.0), t + hl);
-        const auto full = solve_subincrement<M, T>(mp, s, cur.y, guess, dgam1 * hl, dgam2 * hl,
-                                                   target_at(t_end), active, stats);
-        Mask accept = active && full.converged;
-        StateVec<T, NS> y_new = full.y;
-        std::array<T, 3> x_new = full.x;
-        T next_h = h;
-        if (adaptive) {
-            // Step doubling: two half sub-increments against the full one.
-            const T hh = 0.5 * hl;
-            std::array<T, 3> g2;
-            for (int c = 0; c < 3; ++c) {
-                g2[c] = 0.5 * full.x[c];
-            }
-            const auto a = solve_subincrement<M, T>(mp, s, cur.y, g2, dgam1 * hh, dgam2 * hh,
-                                                    target_at(t + hh), accept && !forced, stats);
-            const auto b = solve_subincrement<M, T>(mp, s, a.y, a.x, dgam1 * hh, dgam2 * hh,
-                                                    target_at(t_end), accept && a.converged, stats);
-            const Mask both = accept && a.converged && b.converged;
-            // Error of the shear stresses (the normal ones are pinned by Eqs. 18-20).
-            const T dt1 = b.y[3] - full.y[3];
-            const T dt2 = b.y[4] - full.y[4];
-            const T scale = simd::max(voigt::norm(stress_of(b.y)), T(1.0e-3));
-            const T err = simd::sqrt(dt1 * dt1 + dt2 * dt2) / scale;
-            const Mask accurate = (err <= s.adaptive_tolerance) || forced;
-            const T q = 0.9 * simd::sqrt(s.adaptive_tolerance / simd::max(err, T(1.0e-30)));
-            // Forced lanes (uniform sub-increments) take the full sub-increment as it is.
-            accept = simd::select_mask(forced, accept, both && accurate);
-            y_new = select_state<T, NS>(forced, full.y, b.y);
-            for (int c = 0; c < 3; ++c) {
-                x_new[c] = simd::select(forced, full.x[c], a.x[c] + b.x[c]);
-            }
-            const T grow = simd::min(T(4.0), simd::max(T(0.2), q));
-            const T shrink = simd::select(both, simd::max(T(0.2), simd::min(q, T(0.5))), T(0.25));
-            next_h = simd::select(forced, h, simd::select(accept, hl * grow, hl * shrink));
-            // A sub-increment that cannot be made small enough ends the lane as failed.
-            const Mask too_small = active && !accept && ((hl * total < 1.0e-12) || forced);
-            fail(too_small && full.model_failed, interface_failure::model);
-            fail(too_small, interface_failure::newton);
-            active = active && !too_small;
-        } else {
-            fail(active && full.model_failed, interface_failure::model);
-            fail(active && !full.converged, interface_failure::newton);
-            active = active && full.converged;
-        }
-        // Eq. 26 within the increment: a sub-increment that takes d_s below its floor ends the
-        // lane (band collapse) unless the floor is to be held.
-        if (!s.clamp_band) {
-            const Mask collapses =
-                accept && !(s.shear_band_thickness * (1.0 + cur.eps_n + x_new[0]) > d_s_floor);
-            fail(collapses, interface_failure::band_collapse);
-            accept = accept && !collapses;
-            active = active && !collapses;
-        }
-        // Algorithm 1 lines 11-13: save strain, state and stress of the converged sub-increment.
-        y_new[5] = T(0.0); // Eq. 17: no t1-t2 shear in the interface
-        cur.y = select_state<T, NS>(accept, y_new, cur.y);
-        cur.eps_n = simd::select(accept, cur.eps_n + x_new[0], cur.eps_n);
-        if (k >= 2) {
-            cur.eps_p1 = simd::select(accept, cur.eps_p1 + x_new[1], cur.eps_p1);
-        }
-        if (k >= 3) {
-            cur.eps_p2 = simd::select(accept, cur.eps_p2 + x_new[2], cur.eps_p2);
-        }
-        cur.gamma1 = simd::select(accept, cur.gamma1 + dgam1 * hl, cur.gamma1);
-        cur.gamma2 = simd::select(accept, cur.gamma2 + dgam2 * hl, cur.gamma2);
-        const T safe_hl = simd::max(hl, T(1.0e-300));
-        for (int c = 0; c < 3; ++c) {
-            x_rate[c] = simd::select(accept, x_new[c] / safe_hl, x_rate[c]);
-        }
-        // Accepted sub-increments keep the worst converged residual; a failed lane reports the
-        // residual it stopped at, so the diagnostic says how far Eqs. 18-20 were from met.
-        stats.residual = simd::select(accept || (failed && !full.converged),
-                                      simd::max(stats.residual, full.residual), stats.residual);
-        stats.subincrements += simd::select(accept, T(1.0), T(0.0));
-        last_h = simd::select(accept, hl, last_h);
-        t = simd::select(accept, t_end, t);
-        h = adaptive ? simd::select(active, next_h, h) : h;
-        active = active && ((T(1.0) - t) > 1.0e-12);
-        if (++count > s.max_subincrements) {
-            fail(active, interface_failure::subincrement_limit);
-            break;
-        }
-    }
-    if (adaptive) {
-        const T used = last_h * total / s.max_subincrement;
-        cur.last_subincrement =
-            simd::select(run && !failed && (total > 0.0) && !forced, used, cur.last_subincrement);
-    }
-    // Failed lanes keep their start state; open lanes keep theirs and carry no traction.
-    stats.status = simd::select(failed, T(lane_status::failed), T(lane_status::ok));
-    stats.open = simd::select(open && finite_in, T(1.0), T(0.0));
-    stats.cause = simd::select(failed, cause, T(0.0));
-    stats.band_clamped = simd::select(run && below, T(1.0), T(0.0));
-    const Mask keep = failed || !run;
-    st.y = select_state<T, NS>(keep, st.y, cur.y);
-    st.eps_n = simd::select(keep, st.eps_n, cur.eps_n);
-    st.eps_p1 = simd::select(keep, st.eps_p1, cur.eps_p1);
-    st.eps_p2 = simd::select(keep, st.eps_p2, cur.eps_p2);
-    st.gamma1 = simd::select(keep, st.gamma1, cur.gamma1);
-    st.gamma2 = simd::select(keep, st.gamma2, cur.gamma2);
-    st.last_subincrement = simd::select(keep, st.last_subincrement, cur.last_subincrement);
+    interface_end<M, T>(s, c, st, stats);
 }
 
 } // namespace ifsim

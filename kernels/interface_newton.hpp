@@ -1,0 +1,148 @@
+#pragma once
+// One sub-increment of Algorithm 1 (paper §3.5, lines 3-10): a Newton iteration on the
+// interface normal strains (Eqs. 21-23) that drives the interface normal stresses to their
+// targets (Eqs. 18-20), with the shear strain of the sub-increment prescribed (Eq. 27). Lanes
+// converge independently under masks.
+
+#include <array>
+
+#include "kernels/interface_settings.hpp"
+#include "kernels/material_update.hpp"
+#include "kernels/small_solve.hpp"
+
+namespace ifsim {
+
+// Number of normal-strain unknowns: Stutz: eps_N; novel 2D: eps_N, eps_p1; novel 3D: all three.
+inline int interface_unknowns(const InterfaceSettings& s) {
+    return s.formulation == InterfaceFormulation::stutz ? 1 : (s.ndim == 2 ? 2 : 3);
+}
+
+template <class T, int NS>
+struct SubincrementResult {
+    StateVec<T, NS> y;
+    std::array<T, 3> x{T(0.0), T(0.0), T(0.0)}; // converged normal strain increments
+    simd::mask_t<T> converged{};
+    simd::mask_t<T> model_failed{};
+    T residual = T(0.0);
+};
+
+// The strain increment of one Newton iterate: normal parts from x, shear from the
+// sub-increment of shear strain (tensor components gamma/2), Eq. 27.
+template <class T>
+Sym<T> interface_strain_increment(int k, const std::array<T, 3>& x, const T& dgam1,
+                                  const T& dgam2) {
+    return {x[0], k >= 2 ? x[1] : T(0.0), k >= 3 ? x[2] : T(0.0), 0.5 * dgam1, 0.5 * dgam2, T(0.0)};
+}
+
+// One sub-increment: Newton on the normal strains from y0 (Algorithm 1 lines 3-10).
+template <class M, class T>
+SubincrementResult<T, M::n_state>
+solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
+                   const StateVec<T, M::n_state>& y0, const std::array<T, 3>& x_guess,
+                   const T& dgam1, const T& dgam2, const std::array<T, 3>& target,
+                   const simd::mask_t<T>& active, InterfaceStats<T>& stats) {
+    using Mask = simd::mask_t<T>;
+    constexpr int NS = M::n_state;
+    const int k = interface_unknowns(s);
+    T ref = target[0] * target[0];
+    for (int c = 1; c < k; ++c) {
+        ref += target[c] * target[c];
+    }
+    ref = simd::max(simd::sqrt(ref), T(1.0e-3));
+
+    SubincrementResult<T, NS> out;
+    out.y = y0;
+    out.converged = !active;
+    out.model_failed = Mask(false);
+    std::array<T, 3> x = x_guess;
+    const SubstepControl<T> adaptive_ctl{};
+    Mask failed(false); // lanes whose model update or Newton matrix failed
+    // Lanes below the tolerance that still take their polishing corrections.
+    T polish_left = T(static_cast<double>(s.polish_iterations));
+    Mask met(false);
+    for (int it = 0; it <= s.max_newton_iterations + s.polish_iterations; ++it) {
+        const Mask working = active && !out.converged && !failed;
+        if (simd::none(working)) {
+            break;
+        }
+        const Sym<T> de = interface_strain_increment(k, x, dgam1, dgam2);
+        StateVec<T, NS> yt = y0;
+        UpdateStats<T> ms;
+        material_update<M, T>(mp, s.model, adaptive_ctl, yt, de, ms);
+        stats.evaluations += simd::select(working, T(1.0), T(0.0));
+        stats.model_substeps += simd::select(working, ms.substeps, T(0.0));
+
+        std::array<T, 3> res{T(0.0), T(0.0), T(0.0)};
+        T r2 = T(0.0);
+        for (int c = 0; c < k; ++c) {
+            res[c] = yt[c] - target[c];
+            r2 += res[c] * res[c];
+        }
+        const T r = simd::sqrt(r2) / ref;
+        const Mask model_ok = ms.status > -0.5;
+        met = met || (working && model_ok && (r < s.tolerance));
+        const Mask now = working && model_ok && met && (polish_left < 0.5);
+        out.y = select_state<T, NS>(now, yt, out.y);
+        for (int c = 0; c < 3; ++c) {
+            out.x[c] = simd::select(now, x[c], out.x[c]);
+        }
+        out.residual = simd::select(now, r, out.residual);
+        out.converged = out.converged || now;
+        failed = failed || (working && !model_ok);
+        out.model_failed = out.model_failed || (working && !model_ok);
+        const Mask iterate = working && !now && model_ok;
+        polish_left = simd::select(iterate && met, polish_left - 1.0, polish_left);
+        if (simd::none(iterate) || it == s.max_newton_iterations + s.polish_iterations) {
+            // Lanes that met the tolerance but ran out of iterations keep their last iterate.
+            const Mask take = iterate && met;
+            out.y = select_state<T, NS>(take, yt, out.y);
+            for (int c = 0; c < 3; ++c) {
+                out.x[c] = simd::select(take, x[c], out.x[c]);
+            }
+            out.converged = out.converged || take;
+            out.residual = simd::select(iterate, r, out.residual);
+            break;
+        }
+
+        // Jacobian d sigma_normal / d eps_normal (Eq. 22).
+        std::array<std::array<T, 3>, 3> J{};
+        if (s.newton_jacobian == NewtonJacobian::rate) {
+            const auto cols = M::template rate_stiffness<T>(mp, s.model, y0, de);
+            for (int rr = 0; rr < k; ++rr) {
+                for (int c = 0; c < k; ++c) {
+                    J[rr][c] = cols[c][rr];
+                }
+            }
+        } else {
+            // Same number of equal substeps as the base, so the quotient sees no step noise.
+            SubstepControl<T> fixed;
+            fixed.fixed_substeps = simd::max(ms.substeps, T(1.0));
+            const T delta = s.newton_perturbation * simd::max(voigt::norm(de), T(1.0e-9));
+            StateVec<T, NS> yb = y0;
+            UpdateStats<T> bs;
+            material_update<M, T>(mp, s.model, fixed, yb, de, bs);
+            stats.evaluations += simd::select(iterate, T(1.0), T(0.0));
+            for (int c = 0; c < k; ++c) {
+                Sym<T> dp = de;
+                dp[c] += delta;
+                StateVec<T, NS> yp = y0;
+                UpdateStats<T> ps;
+                material_update<M, T>(mp, s.model, fixed, yp, dp, ps);
+                stats.evaluations += simd::select(iterate, T(1.0), T(0.0));
+                for (int rr = 0; rr < k; ++rr) {
+                    J[rr][c] = (yp[rr] - yb[rr]) / delta;
+                }
+            }
+        }
+        const SmallSolve<T> sol = small_solve<T>(k, J, res);
+        failed = failed || (iterate && !sol.solved);
+        const Mask step = iterate && sol.solved;
+        for (int c = 0; c < k; ++c) {
+            x[c] = simd::select(step, x[c] - sol.x[c], x[c]);
+        }
+        stats.newton_iterations += simd::select(step, T(1.0), T(0.0));
+    }
+    return out;
+}
+
+} // namespace ifsim
