@@ -135,6 +135,9 @@ public:
 
     ContactResultant resultant() const override {
         ContactResultant r;
+        if (traction_.size() != kin_->n_points()) {
+            return r; // before the first pairing: nothing in contact yet
+        }
         for (std::size_t i = 0; i < kin_->n_points(); ++i) {
             const ContactKinematics& k = kin_->point(i);
             if (!k.active) {

@@ -521,13 +521,15 @@ void StaticSolver::tangent_pass(std::span<const double> du) {
         std::string unused;
         update_materials(true, unused);
     }
-    PhaseTimer timer(timers_.assembly);
-    assemble(du, true);
-    for (const Spring& sp : springs_) {
-        for (int d : sp.dofs) {
-            const int eq = dofs_.equation[static_cast<std::size_t>(d)];
-            if (eq >= 0) {
-                system_->add_diagonal(eq, sp.stiffness);
+    {
+        PhaseTimer timer(timers_.assembly);
+        assemble(du, true);
+        for (const Spring& sp : springs_) {
+            for (int d : sp.dofs) {
+                const int eq = dofs_.equation[static_cast<std::size_t>(d)];
+                if (eq >= 0) {
+                    system_->add_diagonal(eq, sp.stiffness);
+                }
             }
         }
     }

@@ -21,7 +21,9 @@ constexpr const char* app_footer = R"(
   ifsim kernel-bench --model MODEL [--formulation F] --points N [--threads T] [--scalar]
                      [--seconds S] [--jacobian J] [--subincrement fixed|adaptive]
 Scene kinds: element-test (one material point), interface-test (simple interface shear:
-a sample in series with one interface point, paper section 5).
+a sample in series with one interface point, paper section 5), boundary-value (finite
+elements: structured 2D/3D bodies, one contact pair with its interface formulation, stages
+of prescribed displacements, ties, pressures, springs and gravity).
 Units kPa and m; compression negative; Voigt order 11 22 33 12 13 23 with tensor shear
 strains. Scene schema: docs/scenes.md; example scenes: scenes/. `ifsim run --help` and
 `ifsim kernel-bench --help` explain each command.)";
@@ -31,7 +33,8 @@ Scene keys, --set syntax, outputs and exit codes: docs/scenes.md.
   --set KEY=VALUE   KEY is a dotted path; numbers pick array entries counted from 1
                     (stage.2.deps_11 = deps_11 of the second [[stage]]); VALUE is a TOML
                     value (0.5, "text", [1, 2], true) or a bare word taken as a string.
-Outputs in DIR: history.csv (one row per step, step 0 = initial state) and, last,
+Outputs in DIR: history.csv (one row per step or, for boundary-value scenes, per converged
+increment; row 0 = initial state) and, last,
 summary.json (status, timing, counters), written atomically.
 Exit codes: 0 ok, 1 output could not be written, 2 bad command line or scene, 3 run failed.)";
 

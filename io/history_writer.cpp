@@ -42,6 +42,10 @@ void HistoryWriter::real(double value) {
     fmt::format_to(std::back_inserter(line_), "{}", value);
 }
 
+void HistoryWriter::empty() {
+    separator();
+}
+
 void HistoryWriter::end_row() {
     if (in_row_ != columns_.size()) {
         throw std::logic_error(

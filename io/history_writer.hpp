@@ -25,6 +25,8 @@ public:
 
     void integer(long long value);
     void real(double value);
+    // An empty field: a quantity the run does not have (documented per kind).
+    void empty();
     // Ends the row; throws std::logic_error when the row has the wrong number of fields.
     void end_row();
 

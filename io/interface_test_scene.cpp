@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "io/element_initial_state.hpp"
+#include "io/interface_formulation_reader.hpp"
 #include "io/table_reader.hpp"
 
 namespace ifsim::io {
@@ -13,23 +14,6 @@ namespace ifsim::io {
 namespace {
 
 using Six = std::array<double, 6>;
-
-// [interface] keys of the continuum formulations (novel, stutz) and of Coulomb friction.
-constexpr std::string_view continuum_keys[] = {"model",
-                                               "parameters",
-                                               "roughness",
-                                               "shear_band_thickness",
-                                               "stutz_initial_stress",
-                                               "subincrement",
-                                               "max_subincrement",
-                                               "tolerance",
-                                               "jacobian",
-                                               "perturbation",
-                                               "void_ratio",
-                                               "intergranular_strain",
-                                               "back_stress",
-                                               "fabric"};
-constexpr std::string_view coulomb_keys[] = {"friction_coefficient", "tangential_stiffness"};
 
 // [integration] keys that tune Algorithm 1 (no meaning for Coulomb friction).
 constexpr std::string_view algorithm1_keys[] = {"interface_newton_jacobian",
@@ -74,67 +58,8 @@ SampleStart read_sample(const TableReader& t, InterfaceTestScene& scene) {
     return start;
 }
 
-void read_continuum_interface(const TableReader& t, InterfaceTestScene& scene,
-                              const SampleStart& sample) {
-    const std::string f = scene.formulation;
-    reject_keys(t, coulomb_keys,
-                fmt::format("applies to formulation \"coulomb\" only; expected no such key for "
-                            "formulation \"{}\"",
-                            f));
-    if (f == "novel" && t.has("stutz_initial_stress")) {
-        t.fail("stutz_initial_stress", "applies to formulation \"stutz\" only; expected no such "
-                                       "key for formulation \"novel\" (its in-plane stresses "
-                                       "always start from the sample's)");
-    }
-    const double roughness = t.number_or("roughness", 0.9, Bounds::open_closed(0.0, 1.0));
-    scene.interface_material =
-        read_model_and_parameters(t, "hypoplasticity", {"hypoplasticity", "sanisand"}, roughness);
-    scene.spec.kind = InterfaceKind::continuum;
-    scene.spec.interface_material = scene.interface_material.choice;
-
-    ContactOptions& c = scene.spec.contact;
-    InterfaceSettings& s = c.interface;
-    s.formulation = f == "novel" ? InterfaceFormulation::novel : InterfaceFormulation::stutz;
-    s.ndim = 3;
-    s.shear_band_thickness = t.number_or("shear_band_thickness", 0.003, Bounds::positive());
-    scene.subincrement = t.choice_or("subincrement", "fixed", {"fixed", "adaptive"});
-    s.adaptive = scene.subincrement == "adaptive";
-    s.max_subincrement = t.number_or("max_subincrement", 5.0e-6, Bounds::positive());
-    s.tolerance = t.number_or("tolerance", 2.0e-3, Bounds::open(0.0, 1.0));
-    s.adaptive_tolerance = s.tolerance; // the contract: one tolerance for both unless refined
-    scene.jacobian = t.choice_or("jacobian", "perturbation",
-                                 {"perturbation", "full-perturbation", "analytical"});
-    c.jacobian = scene.jacobian == "perturbation"        ? ContactJacobian::perturbation
-                 : scene.jacobian == "full-perturbation" ? ContactJacobian::full_perturbation
-                                                         : ContactJacobian::analytical;
-    c.perturbation = t.number_or("perturbation", c.perturbation, Bounds::open(0.0, 1.0));
-
-    InterfaceStressStart start = InterfaceStressStart::continuum;
-    if (f == "stutz") {
-        scene.stutz_initial_stress =
-            t.choice_or("stutz_initial_stress", "continuum", {"continuum", "normal-contact"});
-        if (scene.stutz_initial_stress == "normal-contact") {
-            start = InterfaceStressStart::normal_contact;
-        }
-    }
-    const Six stress = initial_interface_stress(sample.stress, start);
-    const double e = t.number_or("void_ratio", sample.void_ratio, Bounds::positive());
-    scene.spec.interface_state = model_state(t, scene.interface_material, stress, e);
-}
-
-void read_coulomb_interface(const TableReader& t, InterfaceTestScene& scene,
-                            const SampleStart& sample) {
-    reject_keys(t, continuum_keys,
-                "applies to formulations \"novel\" and \"stutz\" only; expected no such key for "
-                "formulation \"coulomb\" (friction_coefficient and tangential_stiffness "
-                "describe it)");
-    scene.spec.kind = InterfaceKind::coulomb;
-    CoulombParams& p = scene.spec.coulomb;
-    p.friction_coefficient =
-        t.number_or("friction_coefficient", p.friction_coefficient, Bounds::non_negative());
-    p.tangential_stiffness =
-        t.number_or("tangential_stiffness", p.tangential_stiffness, Bounds::positive());
-    // The initial shear stress must lie on or inside the friction cone.
+// The sample's initial shear stress must lie on or inside the friction cone.
+void check_friction_cone(const TableReader& t, const CoulombParams& p, const SampleStart& sample) {
     const double tau0 = std::hypot(sample.stress[3], sample.stress[4]);
     const double limit = p.friction_coefficient * std::abs(sample.stress[0]);
     if (tau0 > limit * (1.0 + 1.0e-12)) {
@@ -146,17 +71,32 @@ void read_coulomb_interface(const TableReader& t, InterfaceTestScene& scene,
     }
 }
 
+// The formulation keys (shared with boundary-value scenes), then the interface's state from
+// the sample (continuum formulations) or the friction cone check (Coulomb).
 void read_interface(const TableReader& t, InterfaceTestScene& scene, const SampleStart& sample) {
     t.allow_only({"formulation", "model", "parameters", "roughness", "shear_band_thickness",
                   "stutz_initial_stress", "friction_coefficient", "tangential_stiffness",
                   "subincrement", "max_subincrement", "tolerance", "jacobian", "perturbation",
                   "void_ratio", "intergranular_strain", "back_stress", "fabric"});
-    scene.formulation = t.choice_or("formulation", "novel", {"novel", "stutz", "coulomb"});
-    if (scene.formulation == "coulomb") {
-        read_coulomb_interface(t, scene, sample);
-    } else {
-        read_continuum_interface(t, scene, sample);
+    const InterfaceFormulationSpec f = read_interface_formulation(t);
+    scene.formulation = f.formulation;
+    if (f.is_coulomb()) {
+        scene.spec.kind = InterfaceKind::coulomb;
+        scene.spec.coulomb = f.coulomb;
+        check_friction_cone(t, f.coulomb, sample);
+        return;
     }
+    scene.stutz_initial_stress = f.stutz_initial_stress;
+    scene.interface_material = f.material;
+    scene.subincrement = f.subincrement;
+    scene.jacobian = f.jacobian;
+    scene.spec.kind = InterfaceKind::continuum;
+    scene.spec.interface_material = f.material.choice;
+    scene.spec.contact = f.contact;
+    scene.spec.contact.interface.ndim = 3;
+    const Six stress = initial_interface_stress(sample.stress, f.stress_start);
+    const double e = t.number_or("void_ratio", sample.void_ratio, Bounds::positive());
+    scene.spec.interface_state = model_state(t, scene.interface_material, stress, e);
 }
 
 void read_normal(const TableReader& root, InterfaceTestScene& scene) {

@@ -20,6 +20,10 @@ ProgressLine::ProgressLine(ProgressMode mode, long total_steps, int stages, std:
       total_(total_steps), stages_(stages), out_(out), start_(Clock::now()) {}
 
 void ProgressLine::update(long step, int stage) {
+    update(step, stage, {});
+}
+
+void ProgressLine::update(long step, int stage, std::string_view note) {
     if (!enabled_) {
         return;
     }
@@ -31,8 +35,8 @@ void ProgressLine::update(long step, int stage) {
     shown_ = true;
     const double percent = total_ > 0 ? 100.0 * static_cast<double>(step) / total_ : 100.0;
     // Trailing spaces wipe what a longer previous line left behind.
-    fmt::print(out_, "\rifsim: step {}/{} ({:.0f}%)  stage {}/{}  {:.1f} s   ", step, total_,
-               percent, stage, stages_, t);
+    fmt::print(out_, "\rifsim: step {}/{} ({:.0f}%)  stage {}/{}  {:.1f} s{}{}   ", step, total_,
+               percent, stage, stages_, t, note.empty() ? "" : "  ", note);
     std::fflush(out_);
 }
 

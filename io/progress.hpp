@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <string_view>
 
 namespace ifsim::io {
 
@@ -18,6 +19,8 @@ public:
     ProgressLine& operator=(const ProgressLine&) = delete;
 
     void update(long step, int stage);
+    // The same with a run-specific note after the time ("Newton 3, residual 1.2e-09").
+    void update(long step, int stage, std::string_view note);
     // Ends the line (newline) if one was shown.
     void finish();
 

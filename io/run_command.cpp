@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "io/boundary_value_run.hpp"
+#include "io/boundary_value_scene.hpp"
 #include "io/element_test_run.hpp"
 #include "io/element_test_scene.hpp"
 #include "io/exit_codes.hpp"
@@ -101,6 +103,7 @@ struct Scene {
     std::string kind;
     ElementTestScene element;
     InterfaceTestScene interface;
+    BoundaryValueScene boundary_value;
 };
 
 // Runs the scene's kind and fills the summary with its results. Throws std::runtime_error when
@@ -108,6 +111,17 @@ struct Scene {
 void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double parse_s,
               RunSummary& summary, std::string& label, long& steps) {
     const ProgressMode progress = opt.quiet ? ProgressMode::never : opt.progress;
+    if (scene.kind == "boundary-value") {
+        const BoundaryValueScene& s = scene.boundary_value;
+        const BoundaryValueRunOutcome run = run_boundary_value_scene(s, dir, progress, !opt.scalar);
+        add_boundary_value_results(summary, s, run, parse_s);
+        label = fmt::format("{}D FE", s.mesh_spec.dimension);
+        if (s.interface) {
+            label += ", " + s.interface->formulation.formulation;
+        }
+        steps = s.total_steps();
+        return;
+    }
     if (scene.kind == "interface-test") {
         InterfaceTestScene& s = scene.interface;
         s.spec.contact.simd = !opt.scalar;
@@ -164,10 +178,13 @@ int run_command(const RunOptions& opt) {
             scene.element = read_element_test_scene(table, opt.scene);
         } else if (scene.kind == "interface-test") {
             scene.interface = read_interface_test_scene(table, opt.scene);
+        } else if (scene.kind == "boundary-value") {
+            scene.boundary_value = read_boundary_value_scene(table, opt.scene);
         } else {
             throw SceneError(opt.scene, "kind",
                              fmt::format("kind \"{}\" is not supported by this build; expected "
-                                         "\"element-test\" or \"interface-test\"",
+                                         "\"element-test\", \"interface-test\" or "
+                                         "\"boundary-value\"",
                                          scene.kind),
                              line_in_file(*table.get("kind")));
         }

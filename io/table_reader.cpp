@@ -206,6 +206,63 @@ std::array<double, 6> TableReader::six_numbers(std::string_view key) const {
     return v;
 }
 
+std::vector<double> TableReader::numbers(std::string_view key, std::size_t count,
+                                         const Bounds& bounds, std::string_view meaning) const {
+    const std::string what =
+        fmt::format("an array of {} finite numbers {} ({})", count, bounds.describe(), meaning);
+    const toml::node& n = require(key, what);
+    const auto* arr = n.as_array();
+    if (arr == nullptr || arr->size() != count) {
+        wrong_type(key, n, what);
+    }
+    std::vector<double> v(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        double x = 0.0;
+        if (!numeric_value(*arr->get(i), x) || !std::isfinite(x) || !bounds.contains(x)) {
+            throw SceneError(file_, fmt::format("{}.{}", key_path(key), i + 1),
+                             fmt::format("expected a finite number {} (entry {} of {}: {}), got {}",
+                                         bounds.describe(), i + 1, count, meaning,
+                                         describe_node(*arr->get(i))),
+                             line_in_file(n));
+        }
+        v[i] = x;
+    }
+    return v;
+}
+
+std::vector<long long> TableReader::integers(std::string_view key, std::size_t count, long long lo,
+                                             long long hi, std::string_view meaning) const {
+    const std::string what =
+        fmt::format("an array of {} integers from {} to {} ({})", count, lo, hi, meaning);
+    const toml::node& n = require(key, what);
+    const auto* arr = n.as_array();
+    if (arr == nullptr || arr->size() != count) {
+        wrong_type(key, n, what);
+    }
+    std::vector<long long> v(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        const auto* x = arr->get(i)->as_integer();
+        if (x == nullptr || x->get() < lo || x->get() > hi) {
+            throw SceneError(file_, fmt::format("{}.{}", key_path(key), i + 1),
+                             fmt::format("expected an integer from {} to {} (entry {} of {}: {}), "
+                                         "got {}",
+                                         lo, hi, i + 1, count, meaning,
+                                         describe_node(*arr->get(i))),
+                             line_in_file(n));
+        }
+        v[i] = x->get();
+    }
+    return v;
+}
+
+std::vector<std::string> TableReader::keys() const {
+    std::vector<std::string> out;
+    for (const auto& [k, v] : *table_) {
+        out.emplace_back(k.str());
+    }
+    return out;
+}
+
 TableReader TableReader::table(std::string_view key) const {
     const toml::node& n = require(key, "a table");
     if (!n.is_table()) {

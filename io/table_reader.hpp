@@ -62,6 +62,17 @@ public:
                           std::initializer_list<std::string_view> choices) const;
     // Six finite numbers in Voigt order 11 22 33 12 13 23.
     std::array<double, 6> six_numbers(std::string_view key) const;
+    // `count` finite numbers within bounds (a coordinate, a size, a direction); `meaning` says
+    // what they are in the message ("lower corner x, y in m").
+    std::vector<double> numbers(std::string_view key, std::size_t count, const Bounds& bounds,
+                                std::string_view meaning) const;
+    // `count` integers from lo to hi.
+    std::vector<long long> integers(std::string_view key, std::size_t count, long long lo,
+                                    long long hi, std::string_view meaning) const;
+    // The keys of this table, sorted (names of [material.NAME] tables).
+    std::vector<std::string> keys() const;
+    // The TOML table itself (for a reader that must outlive the parse, keep a copy of it).
+    const toml::table& toml_table() const { return *table_; }
     TableReader table(std::string_view key) const;
     // Each entry of an array of tables ([[stage]]), with paths key.1, key.2, ...
     std::vector<TableReader> array_of_tables(std::string_view key) const;

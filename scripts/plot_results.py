@@ -9,6 +9,8 @@ subdirectories are run directories (e.g. results/). The figure goes to DIR/overv
 Plotters are chosen by the run's kind (summary.json "kind"); add a function to PLOTTERS for
 a new kind.
   element-test    stress path, stress-strain, compression, volume change
+  boundary-value  t_t1, t_n, u_n (and s_p1, s_p2 of a continuum interface) over u_t1 (mm),
+                  one curve per stage; cyclic runs also get cycles.png as interface tests
   interface-test  paper Fig. 6 style: t_t1, s_p1, s_p2, sample_s22, sample_s33 and u_n over
                   the plate displacement u_t1 (mm); for cyclic runs also DIR/cycles.png in the
                   style of Fig. 7: t_t1 and u_n over u_t1 for cycle N = 1 and N = 11 (or the
@@ -43,7 +45,8 @@ def read_history(run_dir):
             if len(row) != len(header):
                 continue  # a truncated last line of an aborted run
             for name, value in zip(header, row):
-                columns[name].append(float(value))
+                # An empty field is a quantity the run does not have (boundary-value runs).
+                columns[name].append(float(value) if value != "" else math.nan)
     return columns
 
 
@@ -270,7 +273,47 @@ def plot_interface_test(plt, run_dir, h, summary):
     return out
 
 
-PLOTTERS = {"element-test": plot_element_test, "interface-test": plot_interface_test}
+def plot_boundary_value(plt, run_dir, h, summary):
+    """FE runs: t_t1, t_n, u_n (and the interface's s_p1, s_p2 when there) over u_t1, in the
+    style of the interface-test plots; cyclic runs also get cycles.png."""
+    u = mm(h["u_t1"])
+    panels = [
+        ("t_t1", "shear stress $t_{t1}$ [kPa]", "(a) mean shear traction on the soil"),
+        ("t_n", "normal stress $t_n$ [kPa]", "(b) mean normal traction"),
+        ("u_n", "normal displacement $u_n$ [mm] (dilation +)", "(c) normal displacement"),
+    ]
+    if any(not math.isnan(v) for v in h.get("s_p1", [])):
+        panels.append(("s_p1", "$\\sigma_{p1}$ [kPa]", "(d) interface normal stress $\\sigma_{p1}$"))
+        panels.append(("s_p2", "$\\sigma_{p2}$ [kPa]", "(e) interface normal stress $\\sigma_{p2}$"))
+    fig, ax = plt.subplots(1, len(panels), figsize=(4.6 * len(panels), 4.2))
+    stages = {int(s) for s in h["stage"] if s > 0}
+    for axis, (key, ylabel, title) in zip(ax, panels):
+        y = mm(h[key]) if key == "u_n" else h[key]
+        if len(stages) <= 4:
+            for stage, xs, ys in by_stage(u, y, h["stage"]):
+                axis.plot(xs, ys, lw=1.2, label=f"stage {stage}")
+        else:
+            axis.plot(u, y, lw=0.8)
+        interface_axes(axis, U_LABEL, ylabel, title)
+    if 1 < len(stages) <= 4:
+        ax[0].legend(fontsize=8)
+    mesh = summary.get("mesh", {})
+    details = [summary.get("formulation") or "no interface",
+               f"{mesh.get('dimension', '?')}D, {mesh.get('elements', '?')} elements"]
+    fig.suptitle(" | ".join([run_title(run_dir, summary)] + details))
+    fig.tight_layout()
+    out = os.path.join(run_dir, FIGURE)
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    if is_cyclic(h):
+        cycles = plot_interface_cycles(plt, run_dir, h, summary)
+        if cycles:
+            out += f", {cycles}"
+    return out
+
+
+PLOTTERS = {"element-test": plot_element_test, "interface-test": plot_interface_test,
+            "boundary-value": plot_boundary_value}
 
 
 def guess_kind(h):
@@ -386,7 +429,7 @@ def main(argv):
             if plotter is None:
                 print(f"plot_results: {run_dir}: no plot for kind {kind!r} yet")
                 continue
-            if not h.get("step"):
+            if not (h.get("step") or h.get("increment")):
                 print(f"plot_results: {run_dir}: {HISTORY} has no rows")
                 continue
             print(f"plot_results: {plotter(plt, run_dir, h, summary)}")

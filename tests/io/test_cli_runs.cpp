@@ -157,14 +157,14 @@ TEST(CliRun, BadOverrideIsReportedWithTheAssignment) {
 }
 
 TEST(CliRun, UnsupportedKindIsAClearError) {
-    const std::string scene = test::write_scene("kind = \"boundary-value\"\n");
+    const std::string scene = test::write_scene("kind = \"fluid-flow\"\n");
     const fs::path out = test::fresh_dir("cli-kind");
     const Captured r = run_captured({"run", scene, "--out", out.string()});
     EXPECT_EQ(r.code, exit_code::bad_input);
-    EXPECT_NE(r.err.find("kind: kind \"boundary-value\" is not supported by this build"),
+    EXPECT_NE(r.err.find("kind: kind \"fluid-flow\" is not supported by this build"),
               std::string::npos)
         << r.err;
-    EXPECT_EQ(summary(out)["kind"], "boundary-value");
+    EXPECT_EQ(summary(out)["kind"], "fluid-flow");
     EXPECT_EQ(summary(out)["status"], "failed");
 }
 

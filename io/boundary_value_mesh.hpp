@@ -1,0 +1,42 @@
+#pragma once
+// The [mesh] table and the [[body]] blocks of a boundary-value scene: each body is a structured
+// block (fem's rectangle_mesh or box_mesh), and the blocks are merged into one mesh without
+// sharing nodes. A body's sets are renamed "<body>.<set>" (node and face sets left, right,
+// bottom, top, front, back, and the node set "<body>.all"); its elements form the element set
+// "<body>".
+
+#include <string>
+#include <vector>
+
+#include "fem/element_geometry.hpp"
+#include "fem/mesh.hpp"
+#include "io/table_reader.hpp"
+
+namespace ifsim::io {
+
+struct BodySpec {
+    std::string name;
+    std::string material;       // a key of [material]
+    std::vector<double> origin; // lower corner, m
+    std::vector<double> size;   // width, (depth,) height, m
+    std::vector<long long> elements;
+    double top() const { return origin.back() + size.back(); } // vertical coordinate
+};
+
+struct MeshSpec {
+    int dimension = 2;
+    std::string integration; // full | reduced
+    fem::Integration rule = fem::Integration::full;
+};
+
+// [mesh]. Throws SceneError.
+MeshSpec read_mesh_spec(const TableReader& mesh);
+
+// One [[body]] entry; `materials` are the keys of [material]. Throws SceneError.
+BodySpec read_body(const TableReader& body, int dimension,
+                   const std::vector<std::string>& materials);
+
+// The bodies' blocks merged into one mesh with the sets named as above.
+fem::Mesh build_mesh(const std::vector<BodySpec>& bodies, int dimension);
+
+} // namespace ifsim::io

@@ -1,0 +1,211 @@
+#include "io/boundary_value_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "io/boundary_value_history.hpp"
+#include "io/history_writer.hpp"
+
+namespace ifsim::io {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+long long rounded(double x) {
+    return static_cast<long long>(std::llround(x));
+}
+
+// Builds the solver and its contact pair; throws what fem throws for an invalid set-up.
+std::unique_ptr<fem::StaticSolver> make_solver(const BoundaryValueScene& scene, bool simd) {
+    fem::SolverSettings settings = scene.settings;
+    settings.update.simd = simd;
+    auto solver = std::make_unique<fem::StaticSolver>(scene.mesh, scene.set_materials(), settings);
+    if (scene.interface) {
+        fem::ContactPairSpec pair = scene.interface->pair;
+        pair.options.simd = simd;
+        solver->add_contact(std::move(pair));
+    }
+    return solver;
+}
+
+} // namespace
+
+BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene,
+                                                 const std::filesystem::path& dir,
+                                                 ProgressMode progress, bool simd) {
+    BoundaryValueRunOutcome out;
+    out.nodes = scene.mesh.n_nodes();
+    out.elements = scene.mesh.n_elements();
+    HistoryWriter history(dir, boundary_value_history_columns());
+    ProgressLine line(progress, scene.total_steps(), static_cast<int>(scene.stages.size()));
+    std::unique_ptr<fem::StaticSolver> solver;
+    try {
+        const auto t0 = Clock::now();
+        solver = make_solver(scene, simd);
+        out.setup_seconds = since(t0);
+        const BoundaryValueProbe probe(scene);
+        {
+            const auto t1 = Clock::now();
+            BoundaryValueRow row;
+            probe.initial(*solver, row);
+            write_boundary_value_row(history, row);
+            out.row_seconds += since(t1);
+        }
+        long steps_before = 0;
+        long increment = 0;
+        out.ok = true;
+        for (std::size_t k = 0; k < scene.stages.size() && out.ok; ++k) {
+            const fem::Stage& stage = scene.stages[k];
+            const auto on_increment = [&](const fem::IncrementInfo& info) {
+                const auto t1 = Clock::now();
+                BoundaryValueRow row;
+                row.increment = ++increment;
+                row.stage = info.stage;
+                row.time = static_cast<double>(k) + info.t_end;
+                row.newton_iterations = static_cast<int>(info.corrections.size());
+                row.cuts = info.cut_depth;
+                row.residual = info.residuals.empty() ? 0.0 : info.residuals.back();
+                probe.measure(*solver, row);
+                write_boundary_value_row(history, row);
+                out.iterations.push_back(row.newton_iterations);
+                line.update(steps_before + info.step, info.stage,
+                            fmt::format("increment {}  Newton {}  residual {:.1e}", increment,
+                                        row.newton_iterations, row.residual));
+                out.row_seconds += since(t1);
+            };
+            const fem::StageResult r = solver->run_stage(stage, on_increment);
+            if (!r.ok) {
+                out.ok = false;
+                out.reason = r.reason;
+            }
+            steps_before += stage.steps;
+        }
+    } catch (const std::exception& e) {
+        // An invalid set-up or a writer error in the middle of the run: keep the rows so far.
+        out.ok = false;
+        out.reason = fmt::format("run aborted: {}", e.what());
+    }
+    line.finish();
+    if (solver) {
+        out.counters = solver->counters();
+        out.timers = solver->timers();
+        out.equations = solver->dof_map().n_equations;
+        out.setup_seconds = std::max(0.0, out.setup_seconds - out.timers.k0);
+    }
+    const auto t2 = Clock::now();
+    history.finish();
+    out.finish_seconds = since(t2);
+    out.rows = history.rows();
+    return out;
+}
+
+void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& scene,
+                                const BoundaryValueRunOutcome& run, double parse_s) {
+    const fem::SolverCounters& c = run.counters;
+    const bool contact = scene.interface.has_value();
+    summary.ok = run.ok;
+    summary.reason = run.reason;
+    auto& k = summary.counters;
+    k["increments"] = c.increments;
+    k["newton_iterations"] = c.newton_iterations;
+    k["subincrements"] = rounded(c.contact_subincrements);
+    k["constitutive_evaluations"] =
+        c.constitutive_evaluations + rounded(c.contact_constitutive_evaluations);
+    k["cuts"] = c.cuts;
+    k["material_evaluations"] = c.constitutive_evaluations;
+    k["tangent_evaluations"] = c.tangent_evaluations;
+    k["tangent_fallbacks"] = c.tangent_fallbacks;
+    k["failed_point_updates"] = c.failed_point_updates;
+    if (contact) {
+        k["contact_evaluations"] = c.contact_evaluations;
+        k["contact_point_updates"] = rounded(c.contact_point_updates);
+        k["contact_lanes"] = rounded(c.contact_lanes);
+        k["contact_constitutive_evaluations"] = rounded(c.contact_constitutive_evaluations);
+        k["contact_pairings"] = c.contact_pairings;
+        k["contact_pattern_rebuilds"] = c.contact_pattern_rebuilds;
+        k["contact_failures"] = c.contact_failures;
+    }
+    k["patterns_built"] = c.patterns_built;
+    k["linear_symbolic_analyses"] = c.linear.symbolic_analyses;
+    k["linear_factorisations"] = c.linear.numeric_factorisations;
+    k["linear_solves"] = c.linear.solves;
+    k["k0_points"] = c.k0_points;
+    k["gravity_load_applications"] = c.gravity_load_applications;
+
+    auto& d = summary.details;
+    d["mesh"] = {{"dimension", scene.mesh_spec.dimension},
+                 {"integration", scene.mesh_spec.integration},
+                 {"bodies", scene.bodies.size()},
+                 {"nodes", run.nodes},
+                 {"elements", run.elements},
+                 {"equations", run.equations}};
+    double mean = 0.0;
+    int max = 0;
+    for (int it : run.iterations) {
+        mean += it;
+        max = std::max(max, it);
+    }
+    if (!run.iterations.empty()) {
+        mean /= static_cast<double>(run.iterations.size());
+    }
+    d["iterations_per_increment"] = {{"mean", mean}, {"max", max}};
+    if (contact) {
+        const BoundaryValueInterface& bi = *scene.interface;
+        nlohmann::ordered_json j = {{"slave", bi.pair.slave_faces},
+                                    {"master", bi.pair.master_faces},
+                                    {"formulation", bi.formulation.formulation},
+                                    {"initial_contact", bi.initial_contact},
+                                    {"normal_penalty", bi.pair.normal_penalty}};
+        if (bi.formulation.is_coulomb()) {
+            j["friction_coefficient"] = bi.pair.friction.friction_coefficient;
+            j["tangential_stiffness"] = bi.pair.friction.tangential_stiffness;
+        } else {
+            j["model"] = bi.formulation.material.model;
+            j["parameters"] = bi.formulation.material.parameters;
+            j["roughness"] = bi.formulation.material.roughness;
+            j["shear_band_thickness"] = bi.pair.options.interface.shear_band_thickness;
+            j["subincrement"] = bi.formulation.subincrement;
+            j["jacobian"] = bi.formulation.jacobian;
+            if (bi.formulation.formulation == "stutz") {
+                j["stutz_initial_stress"] = bi.formulation.stutz_initial_stress;
+            }
+        }
+        d["interface"] = j;
+        d["formulation"] = bi.formulation.formulation;
+    }
+    d["linear_solver"] = scene.linear_solver;
+    d["tangent"] = scene.tangent;
+    d["stages"] = scene.stages.size();
+    d["steps"] = scene.total_steps();
+    d["rows"] = run.rows;
+    d["outputs"] = {HistoryWriter::file_name};
+    if (!scene.description.empty()) {
+        d["description"] = scene.description;
+    }
+    const fem::SolverTimers& t = run.timers;
+    summary.phases = {{"parse", parse_s},
+                      {"setup", run.setup_seconds},
+                      {"element", t.element},
+                      {"assembly", t.assembly},
+                      {"solve", t.solve},
+                      {"contact_search", t.contact_search},
+                      {"contact_gather", t.contact_gather},
+                      {"contact_kernels", t.contact_kernels},
+                      {"contact_scatter", t.contact_scatter},
+                      {"gravity", t.gravity},
+                      {"k0", t.k0},
+                      {"pressure", t.pressure},
+                      {"output", run.row_seconds + run.finish_seconds}};
+}
+
+} // namespace ifsim::io

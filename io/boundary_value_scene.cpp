@@ -1,0 +1,133 @@
+#include "io/boundary_value_scene.hpp"
+
+#include <fmt/format.h>
+
+#include "io/boundary_value_stage.hpp"
+#include "io/table_reader.hpp"
+
+namespace ifsim::io {
+
+namespace {
+
+void read_solver(const TableReader& root, BoundaryValueScene& scene) {
+    fem::SolverSettings& s = scene.settings;
+    scene.linear_solver = "umfpack";
+    scene.tangent = "perturbation";
+    if (!root.has("solver")) {
+        return;
+    }
+    const TableReader t = root.table("solver");
+    t.allow_only({"residual_tolerance", "displacement_tolerance", "max_iterations", "max_cuts",
+                  "linear_solver", "tangent", "extrapolate"});
+    s.residual_tolerance =
+        t.number_or("residual_tolerance", s.residual_tolerance, Bounds::open(0.0, 1.0));
+    s.displacement_tolerance =
+        t.number_or("displacement_tolerance", s.displacement_tolerance, Bounds::open(0.0, 1.0));
+    s.max_iterations = static_cast<int>(t.integer_or("max_iterations", s.max_iterations, 1, 1000));
+    s.max_cuts = static_cast<int>(t.integer_or("max_cuts", s.max_cuts, 0, 30));
+    scene.linear_solver = t.choice_or("linear_solver", "umfpack", {"umfpack", "klu"});
+    s.linear_solver = scene.linear_solver == "umfpack" ? fem::LinearSolverKind::umfpack
+                                                       : fem::LinearSolverKind::klu;
+    scene.tangent =
+        t.choice_or("tangent", "perturbation", {"perturbation", "fixed-substeps", "rate"});
+    s.tangent.kind = scene.tangent == "rate" ? TangentKind::rate : TangentKind::perturbation;
+    s.tangent.fixed_substeps = scene.tangent == "fixed-substeps";
+    s.extrapolate = t.boolean_or("extrapolate", s.extrapolate);
+}
+
+std::string node_set(const TableReader& t, std::string_view key, const fem::Mesh& mesh) {
+    const std::string name = t.string(key);
+    if (!mesh.node_sets.contains(name)) {
+        std::string list;
+        for (const auto& [n, nodes] : mesh.node_sets) {
+            list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", n);
+        }
+        t.fail(key, fmt::format("expected a node set of the mesh: {}; got \"{}\"", list, name));
+    }
+    return name;
+}
+
+BoundaryValueOutput read_output(const TableReader& t, const fem::Mesh& mesh, bool interface) {
+    t.allow_only({"plate", "soil_top", "traction_faces"});
+    BoundaryValueOutput out;
+    out.plate = node_set(t, "plate", mesh);
+    out.soil_top = node_set(t, "soil_top", mesh);
+    if (interface) {
+        if (t.has("traction_faces")) {
+            t.fail("traction_faces", "applies to runs without [interface] only (with it the "
+                                     "tractions are the contact's); expected no such key");
+        }
+        return out;
+    }
+    out.traction_faces = t.string("traction_faces");
+    if (!mesh.face_sets.contains(out.traction_faces) ||
+        mesh.face_sets.at(out.traction_faces).empty()) {
+        t.fail("traction_faces", fmt::format("expected a face set of the mesh (\"<body>.<side>\") "
+                                             "whose reactions give the mean traction, got \"{}\"",
+                                             out.traction_faces));
+    }
+    return out;
+}
+
+} // namespace
+
+long BoundaryValueScene::total_steps() const {
+    long n = 0;
+    for (const auto& s : stages) {
+        n += s.steps;
+    }
+    return n;
+}
+
+std::vector<fem::ElementSetMaterial> BoundaryValueScene::set_materials() const {
+    std::vector<fem::ElementSetMaterial> out;
+    for (const BodySpec& b : bodies) {
+        out.push_back(materials.at(b.name).set);
+    }
+    return out;
+}
+
+BoundaryValueScene read_boundary_value_scene(const toml::table& table, const std::string& file) {
+    const TableReader root(table, file, "");
+    root.allow_only({"kind", "description", "mesh", "body", "material", "interface", "solver",
+                     "output", "stage"});
+    BoundaryValueScene scene;
+    if (root.has("description")) {
+        scene.description = root.string("description");
+    }
+    scene.mesh_spec = read_mesh_spec(root.table("mesh"));
+    const int dim = scene.mesh_spec.dimension;
+    scene.settings.integration = scene.mesh_spec.rule;
+
+    const TableReader material = root.table("material");
+    const std::vector<std::string> names = material.keys();
+    if (names.empty()) {
+        material.fail_here("expected one or more tables [material.NAME]");
+    }
+    for (const TableReader& b : root.array_of_tables("body")) {
+        BodySpec body = read_body(b, dim, names);
+        for (const BodySpec& other : scene.bodies) {
+            if (other.name == body.name) {
+                b.fail("name", fmt::format("expected a name not used by another body, got \"{}\"",
+                                           body.name));
+            }
+        }
+        scene.materials.emplace(body.name, read_body_material(material.table(body.material), body));
+        scene.bodies.push_back(std::move(body));
+    }
+    scene.mesh = build_mesh(scene.bodies, dim);
+
+    if (root.has("interface")) {
+        scene.interface =
+            read_boundary_value_interface(root.table("interface"), scene.mesh, scene.materials);
+    }
+    read_solver(root, scene);
+    scene.output = read_output(root.table("output"), scene.mesh, scene.interface.has_value());
+    int number = 1;
+    for (const TableReader& st : root.array_of_tables("stage")) {
+        scene.stages.push_back(read_boundary_value_stage(st, scene.mesh, number++));
+    }
+    return scene;
+}
+
+} // namespace ifsim::io

@@ -1,0 +1,52 @@
+#pragma once
+// A scene of kind "boundary-value" (finite elements; docs/scenes.md): structured bodies merged
+// into one mesh, a material per body, at most one contact pair with its interface formulation,
+// the solver settings, the output sets and the stages. Every key is checked at parse time,
+// sets against the mesh and each stage's constraints against each other.
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "fem/mesh.hpp"
+#include "fem/solver_settings.hpp"
+#include "fem/stage.hpp"
+#include "io/boundary_value_interface.hpp"
+#include "io/boundary_value_material.hpp"
+#include "io/boundary_value_mesh.hpp"
+
+namespace ifsim::io {
+
+// [output]: what history.csv measures.
+struct BoundaryValueOutput {
+    std::string plate;          // node set: "the plate"
+    std::string soil_top;       // node set: the soil's top
+    std::string traction_faces; // face set, runs without [interface] only
+};
+
+struct BoundaryValueScene {
+    std::string description;
+    MeshSpec mesh_spec;
+    std::vector<BodySpec> bodies;
+    std::map<std::string, BodyMaterial> materials; // by body name
+    fem::Mesh mesh;
+    fem::SolverSettings settings;
+    std::string linear_solver; // umfpack | klu
+    std::string tangent;       // perturbation | fixed-substeps | rate
+    std::optional<BoundaryValueInterface> interface;
+    BoundaryValueOutput output;
+    std::vector<fem::Stage> stages;
+
+    long total_steps() const;
+    // The solver's materials in body order.
+    std::vector<fem::ElementSetMaterial> set_materials() const;
+};
+
+// Reads and checks the whole scene. Throws SceneError naming the file, the key and what was
+// expected.
+BoundaryValueScene read_boundary_value_scene(const toml::table& scene, const std::string& file);
+
+} // namespace ifsim::io
