@@ -167,10 +167,11 @@ def stage_directions(h, key="u_t1"):
 
 def cycle_numbers(h):
     """Cycle number of every row: cycle 1 starts at step 0; a new cycle starts where u_t1
-    passes its start value again moving in the direction of stage 1."""
+    passes its start value again moving in the direction of the first stage that moves it
+    (an FE run's consolidation stage does not)."""
     u, stage = h["u_t1"], h["stage"]
     direction = stage_directions(h)
-    d0 = direction.get(1, 0)
+    d0 = next((d for _, d in sorted(direction.items()) if d != 0), 0)
     amplitude = max((abs(x - u[0]) for x in u), default=0.0)
     tol = 1e-9 * amplitude
     numbers, n = [1], 1
