@@ -10,20 +10,11 @@
 
 #include "io/boundary_value_history.hpp"
 #include "io/history_writer.hpp"
+#include "io/run_clock.hpp"
 
 namespace ifsim::io {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-long long rounded(double x) {
-    return static_cast<long long>(std::llround(x));
-}
 
 // Builds the solver and its contact pair; throws what fem throws for an invalid set-up.
 std::unique_ptr<fem::StaticSolver> make_solver(const BoundaryValueScene& scene, bool simd) {

@@ -7,18 +7,9 @@
 
 #include "io/element_history.hpp"
 #include "io/history_writer.hpp"
+#include "io/run_clock.hpp"
 
 namespace ifsim::io {
-
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-} // namespace
 
 ElementRunOutcome run_element_test_scene(const ElementTestScene& scene,
                                          const std::filesystem::path& dir, ProgressMode progress) {

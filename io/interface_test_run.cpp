@@ -9,22 +9,9 @@
 
 #include "io/history_writer.hpp"
 #include "io/interface_history.hpp"
+#include "io/run_clock.hpp"
 
 namespace ifsim::io {
-
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-long long rounded(double x) {
-    return static_cast<long long>(std::llround(x));
-}
-
-} // namespace
 
 InterfaceRunOutcome run_interface_test_scene(const InterfaceTestScene& scene,
                                              const std::filesystem::path& dir,

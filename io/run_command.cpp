@@ -15,6 +15,7 @@
 #include "io/history_writer.hpp"
 #include "io/interface_test_run.hpp"
 #include "io/interface_test_scene.hpp"
+#include "io/run_clock.hpp"
 #include "io/scene_error.hpp"
 #include "io/scene_toml.hpp"
 #include "io/summary_writer.hpp"
@@ -27,11 +28,6 @@ namespace ifsim::io {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 // Results of an earlier run in DIR must not survive as if they belonged to this one.
 void remove_stale_outputs(const fs::path& dir) {
