@@ -153,6 +153,32 @@ TEST(FeShearBox, FailingInterfacePointStopsTheRunWithADiagnostic) {
     }
 }
 
+// Any continuum model of the material engine plugs into the FE interface unchanged: Sanisand
+// (Karlsruhe sand, kappa = 0.9) as interface model under the hypoplastic soil, 2D and 3D.
+TEST(FeShearBox, SanisandInterfaceRunsInTheSameBox) {
+    for (int dim : {2, 3}) {
+        ShearBoxOptions o;
+        o.dim = dim;
+        o.steps = 10;
+        o.adjust = [](ContactPairSpec& c) {
+            c.interface_material = test::karlsruhe_sanisand(0.9);
+            c.initial_state = [](const Voigt6& s) {
+                return test::as_vector(
+                    Sanisand::initial_state({s[0], s[1], s[2], s[3], s[4], s[5]}, 0.75));
+            };
+        };
+        const ShearBoxRun r = run_shear_box(o);
+        ASSERT_TRUE(r.ok) << dim << "D: " << r.reason;
+        for (std::size_t k = 0; k < r.t_t1.size(); ++k) {
+            EXPECT_NEAR(r.t_n[k], -100.0, 0.1) << "CNL, increment " << k;
+        }
+        EXPECT_GT(r.t_t1.back(), 10.0); // mobilised shear, below the Coulomb-like limit
+        EXPECT_LT(r.t_t1.back(), 100.0);
+        std::printf("%dD Sanisand interface: tau %.2f kPa at %.2g mm, %ld Newton iterations\n", dim,
+                    r.t_t1.back(), 1e3 * r.u_t1.back(), r.counters.newton_iterations);
+    }
+}
+
 TEST(FeShearBox, OneAndTwoThreadsGiveBitwiseEqualDisplacements) {
     ShearBoxOptions o;
     o.steps = 4;
