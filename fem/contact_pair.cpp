@@ -128,6 +128,7 @@ public:
     }
 
     void add_tangent(std::vector<ContactTriplet>& K) override {
+        refresh_jacobian();
         PhaseTimer timer(timers_.scatter);
         scratch_.assign(scratch_.size(), 0.0);
         kin_->assemble(traction_, scratch_, &K);
@@ -170,6 +171,7 @@ public:
 
 protected:
     virtual bool needs_stress() const = 0; // s_p1, s_p2 every increment
+    virtual void refresh_jacobian() {}     // Jacobian columns of the last evaluate() if deferred
     virtual void start(const std::vector<Voigt6>& local_stress) = 0;
     virtual void add_state_means(std::size_t, double, ContactResultant&) const {}
 
@@ -309,6 +311,8 @@ public:
                 fmt::format("contact pair '{}': no initial interface state", spec_.name));
         }
         spec_.options.interface.ndim = dim_;
+        base_only_ = spec_.options;
+        base_only_.jacobian = ContactJacobian::analytical;
     }
 
     bool evaluate(const std::vector<double>& du, std::vector<double>& f_int,
@@ -322,20 +326,16 @@ public:
                 points_.input(contact_col::s_p2)[i] = local_stress_[i][2];
             }
         }
+        // Deferred Jacobian: the residual needs only the base lanes; the Eq. 37 lanes run when
+        // the solver asks for the tangent (not after the residual that converges).
+        defer_ = spec_.defer_jacobian && spec_.options.jacobian != ContactJacobian::analytical;
         ContactReport rep;
         {
             PhaseTimer timer(timers_.kernels);
-            rep = engine_.update(points_, params_, spec_.options);
+            rep = engine_.update(points_, params_, defer_ ? base_only_ : spec_.options);
         }
         PhaseTimer timer(timers_.scatter);
-        ++counters_.evaluations;
-        counters_.point_updates += static_cast<double>(rep.points);
-        counters_.lanes += rep.lanes;
-        counters_.subincrements += rep.subincrements;
-        counters_.constitutive_evaluations += rep.constitutive_evaluations;
-        counters_.interface_newton_iterations += rep.newton_iterations;
-        counters_.band_clamped += static_cast<long>(rep.band_clamped);
-        counters_.dropped_columns += rep.dropped_columns;
+        count(rep);
         if (!rep.ok()) {
             ++counters_.failed_evaluations;
             const std::size_t i = rep.first_failed;
@@ -358,6 +358,38 @@ public:
 
 protected:
     bool needs_stress() const override { return true; }
+
+    // The same update with the Jacobian lanes: the base lanes repeat the residual's
+    // evaluation exactly (same inputs, lane arithmetic independent of the batch), the perturbed
+    // lanes give the columns. A perturbed run cannot fail where the base did not (a failed
+    // perturbed lane only drops its column).
+    void refresh_jacobian() override {
+        if (!defer_) {
+            return;
+        }
+        defer_ = false;
+        ContactReport rep;
+        {
+            PhaseTimer timer(timers_.kernels);
+            rep = engine_.update(points_, params_, spec_.options);
+        }
+        PhaseTimer timer(timers_.scatter);
+        count(rep);
+        for (std::size_t i = 0; i < kin_->n_points(); ++i) {
+            take_traction(points_, i);
+        }
+    }
+
+    void count(const ContactReport& rep) {
+        ++counters_.evaluations;
+        counters_.point_updates += static_cast<double>(rep.points);
+        counters_.lanes += rep.lanes;
+        counters_.subincrements += rep.subincrements;
+        counters_.constitutive_evaluations += rep.constitutive_evaluations;
+        counters_.interface_newton_iterations += rep.newton_iterations;
+        counters_.band_clamped += static_cast<long>(rep.band_clamped);
+        counters_.dropped_columns += rep.dropped_columns;
+    }
 
     void start(const std::vector<Voigt6>& local_stress) override {
         constexpr int NS = M::n_state;
@@ -389,6 +421,8 @@ protected:
 
 private:
     typename M::Params params_;
+    ContactOptions base_only_; // the spec's options without the Eq. 37 lanes
+    bool defer_ = false;       // the last evaluate() ran the base lanes only
     ContactPoints<M> points_;
     ContactEngine<M> engine_;
 };

@@ -53,6 +53,10 @@ struct ContactPairSpec {
     MaterialChoice interface_material;      // continuum (hypoplasticity or sanisand)
     InterfaceStateFromStress initial_state; // continuum
     ContactOptions options;                 // continuum: formulation, Algorithm 1, Jacobian
+    // Continuum, Eq. 37 / Eqs. 39-40: a residual evaluation runs the base lanes only and the
+    // Jacobian lanes run when the tangent is asked for (same results, fewer lanes: the residual
+    // that converges an increment needs no Jacobian).
+    bool defer_jacobian = true;
 };
 
 struct ContactPairTimers {

@@ -179,6 +179,31 @@ TEST(FeShearBox, SanisandInterfaceRunsInTheSameBox) {
     }
 }
 
+// Deferring the Eq. 37 lanes to the tangent pass changes nothing but the work: the base lanes
+// repeat the residual's evaluation bitwise, so displacements and tractions are identical.
+TEST(FeShearBox, DeferredJacobianLanesGiveBitwiseEqualResultsWithFewerLanes) {
+    for (bool adaptive : {false, true}) {
+        ShearBoxOptions o;
+        o.steps = 6;
+        o.adjust = [adaptive](ContactPairSpec& c) {
+            c.options.interface.adaptive = adaptive;
+            c.defer_jacobian = false;
+        };
+        const ShearBoxRun eager = run_shear_box(o);
+        o.adjust = [adaptive](ContactPairSpec& c) { c.options.interface.adaptive = adaptive; };
+        const ShearBoxRun deferred = run_shear_box(o);
+        ASSERT_TRUE(eager.ok && deferred.ok) << eager.reason << deferred.reason;
+        ASSERT_EQ(eager.u.size(), deferred.u.size());
+        EXPECT_EQ(std::memcmp(eager.u.data(), deferred.u.data(), eager.u.size() * sizeof(double)),
+                  0);
+        EXPECT_EQ(eager.t_t1, deferred.t_t1);
+        EXPECT_EQ(eager.counters.newton_iterations, deferred.counters.newton_iterations);
+        EXPECT_LT(deferred.counters.contact_lanes, eager.counters.contact_lanes);
+        std::printf("adaptive %d: contact lanes %.0f eager, %.0f deferred\n", adaptive,
+                    eager.counters.contact_lanes, deferred.counters.contact_lanes);
+    }
+}
+
 TEST(FeShearBox, OneAndTwoThreadsGiveBitwiseEqualDisplacements) {
     ShearBoxOptions o;
     o.steps = 4;
