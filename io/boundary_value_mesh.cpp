@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 
 #include "fem/structured_mesh.hpp"
+#include "io/gmsh_error.hpp"
+#include "io/gmsh_reader.hpp"
 
 namespace ifsim::io {
 
@@ -22,12 +24,36 @@ std::string quoted_list(const std::vector<std::string>& names) {
 } // namespace
 
 MeshSpec read_mesh_spec(const TableReader& t) {
-    t.allow_only({"dimension", "integration"});
+    t.allow_only({"dimension", "integration", "file"});
     MeshSpec spec;
     spec.dimension = static_cast<int>(t.integer("dimension", 2, 3));
     spec.integration = t.choice_or("integration", "full", {"full", "reduced"});
     spec.rule = spec.integration == "full" ? fem::Integration::full : fem::Integration::reduced;
+    if (t.has("file")) {
+        spec.file = t.string("file");
+        if (spec.file.empty()) {
+            t.fail("file", "expected the path of a Gmsh .msh file, got an empty string");
+        }
+        const std::filesystem::path p(spec.file);
+        spec.path = p.is_absolute() ? p : std::filesystem::path(t.file()).parent_path() / p;
+    }
     return spec;
+}
+
+fem::Mesh read_mesh_file(const TableReader& t, const MeshSpec& spec) {
+    GmshMesh read;
+    try {
+        read = read_gmsh_mesh(spec.path.string());
+    } catch (const MeshFileError& e) {
+        t.fail("file", fmt::format("expected a readable Gmsh mesh (ASCII MSH 4.1 or 2.2 of "
+                                   "quadrangles or hexahedra): {}",
+                                   e.what()));
+    }
+    if (read.mesh.dim() != spec.dimension) {
+        t.fail("dimension", fmt::format("expected the dimension of the mesh file {} ({}), got {}",
+                                        spec.path.string(), read.mesh.dim(), spec.dimension));
+    }
+    return std::move(read.mesh);
 }
 
 BodySpec read_body(const TableReader& t, int dimension, const std::vector<std::string>& materials) {

@@ -140,6 +140,9 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
                  {"nodes", run.nodes},
                  {"elements", run.elements},
                  {"equations", run.equations}};
+    if (!scene.mesh_spec.file.empty()) {
+        d["mesh"]["file"] = scene.mesh_spec.path.string();
+    }
     double mean = 0.0;
     int max = 0;
     for (int it : run.iterations) {

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "io/boundary_value_region.hpp"
 #include "io/boundary_value_stage.hpp"
 #include "io/table_reader.hpp"
 
@@ -69,6 +70,52 @@ BoundaryValueOutput read_output(const TableReader& t, const fem::Mesh& mesh, boo
     return out;
 }
 
+// [[body]] blocks: the structured mesh and a material per body.
+void read_bodies(const TableReader& root, const std::vector<std::string>& names,
+                 BoundaryValueScene& scene) {
+    if (root.has("region")) {
+        root.fail("region", "applies to a mesh file ([mesh] file = \"path.msh\") only; expected "
+                            "no [[region]] with [[body]] blocks (each body names its material)");
+    }
+    if (!root.has("body")) {
+        root.fail("body", "missing; expected one or more tables [[body]] (structured blocks) or "
+                          "a Gmsh mesh file ([mesh] file = \"path.msh\") with [[region]] entries");
+    }
+    const TableReader material = root.table("material");
+    for (const TableReader& b : root.array_of_tables("body")) {
+        BodySpec body = read_body(b, scene.mesh_spec.dimension, names);
+        for (const BodySpec& other : scene.bodies) {
+            if (other.name == body.name) {
+                b.fail("name", fmt::format("expected a name not used by another body, got \"{}\"",
+                                           body.name));
+            }
+        }
+        scene.materials.emplace(body.name, read_body_material(material.table(body.material), body));
+        scene.bodies.push_back(std::move(body));
+    }
+    scene.mesh = build_mesh(scene.bodies, scene.mesh_spec.dimension);
+}
+
+// [mesh] file: the file's mesh and a material per [[region]].
+void read_mesh_file_and_regions(const TableReader& root, const TableReader& mesh,
+                                const std::vector<std::string>& names, BoundaryValueScene& scene) {
+    if (root.has("body")) {
+        root.fail("body", "expected either [[body]] blocks or a mesh file ([mesh] file), not both");
+    }
+    if (!root.has("region")) {
+        root.fail("region", "missing; expected one or more tables [[region]] (set = an element "
+                            "set of the mesh file, material = a key of [material]) with [mesh] "
+                            "file");
+    }
+    scene.mesh = read_mesh_file(mesh, scene.mesh_spec);
+    scene.bodies = read_regions(root, scene.mesh, names);
+    const TableReader material = root.table("material");
+    for (const BodySpec& region : scene.bodies) {
+        scene.materials.emplace(region.name,
+                                read_body_material(material.table(region.material), region));
+    }
+}
+
 } // namespace
 
 long BoundaryValueScene::total_steps() const {
@@ -89,14 +136,14 @@ std::vector<fem::ElementSetMaterial> BoundaryValueScene::set_materials() const {
 
 BoundaryValueScene read_boundary_value_scene(const toml::table& table, const std::string& file) {
     const TableReader root(table, file, "");
-    root.allow_only({"kind", "description", "mesh", "body", "material", "interface", "solver",
-                     "output", "stage"});
+    root.allow_only({"kind", "description", "mesh", "body", "region", "material", "interface",
+                     "solver", "output", "stage"});
     BoundaryValueScene scene;
     if (root.has("description")) {
         scene.description = root.string("description");
     }
-    scene.mesh_spec = read_mesh_spec(root.table("mesh"));
-    const int dim = scene.mesh_spec.dimension;
+    const TableReader mesh = root.table("mesh");
+    scene.mesh_spec = read_mesh_spec(mesh);
     scene.settings.integration = scene.mesh_spec.rule;
 
     const TableReader material = root.table("material");
@@ -104,18 +151,11 @@ BoundaryValueScene read_boundary_value_scene(const toml::table& table, const std
     if (names.empty()) {
         material.fail_here("expected one or more tables [material.NAME]");
     }
-    for (const TableReader& b : root.array_of_tables("body")) {
-        BodySpec body = read_body(b, dim, names);
-        for (const BodySpec& other : scene.bodies) {
-            if (other.name == body.name) {
-                b.fail("name", fmt::format("expected a name not used by another body, got \"{}\"",
-                                           body.name));
-            }
-        }
-        scene.materials.emplace(body.name, read_body_material(material.table(body.material), body));
-        scene.bodies.push_back(std::move(body));
+    if (scene.mesh_spec.file.empty()) {
+        read_bodies(root, names, scene);
+    } else {
+        read_mesh_file_and_regions(root, mesh, names, scene);
     }
-    scene.mesh = build_mesh(scene.bodies, dim);
 
     if (root.has("interface")) {
         scene.interface =

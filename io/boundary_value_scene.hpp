@@ -1,8 +1,9 @@
 #pragma once
 // A scene of kind "boundary-value" (finite elements; docs/scenes.md): structured bodies merged
-// into one mesh, a material per body, at most one contact pair with its interface formulation,
-// the solver settings, the output sets and the stages. Every key is checked at parse time,
-// sets against the mesh and each stage's constraints against each other.
+// into one mesh with a material per body, or a Gmsh mesh file with a material per region; at
+// most one contact pair with its interface formulation, the solver settings, the output sets
+// and the stages. Every key is checked at parse time, sets against the mesh and each stage's
+// constraints against each other.
 
 #include <map>
 #include <optional>
@@ -30,6 +31,7 @@ struct BoundaryValueOutput {
 struct BoundaryValueScene {
     std::string description;
     MeshSpec mesh_spec;
+    // The structured bodies, or with a mesh file its regions (named after their element sets).
     std::vector<BodySpec> bodies;
     std::map<std::string, BodyMaterial> materials; // by body name
     fem::Mesh mesh;
