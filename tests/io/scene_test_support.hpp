@@ -12,7 +12,29 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include "io/cli.hpp"
+
 namespace ifsim::io::test {
+
+// `ifsim ARGS...` through the command-line entry point, with its exit code and what it printed.
+struct CliRun {
+    int code = 0;
+    std::string err;
+    std::string out;
+};
+
+inline CliRun run_cli_captured(std::vector<std::string> args) {
+    args.insert(args.begin(), "ifsim");
+    std::vector<const char*> argv;
+    for (const auto& a : args) {
+        argv.push_back(a.c_str());
+    }
+    testing::internal::CaptureStderr();
+    testing::internal::CaptureStdout();
+    const int code = run_cli(static_cast<int>(argv.size()), argv.data());
+    std::string out = testing::internal::GetCapturedStdout();
+    return {code, testing::internal::GetCapturedStderr(), out};
+}
 
 // Directories made by fresh_dir(), removed when the test program ends.
 struct TempDirs {

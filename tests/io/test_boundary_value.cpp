@@ -29,17 +29,7 @@ namespace fs = std::filesystem;
 const char* const cnl_2d = "scenes/fe-simple-shear-cnl-2d.toml";
 
 int run(std::vector<std::string> args) {
-    args.insert(args.begin(), "ifsim");
-    std::vector<const char*> argv;
-    for (const auto& a : args) {
-        argv.push_back(a.c_str());
-    }
-    testing::internal::CaptureStderr();
-    testing::internal::CaptureStdout();
-    const int code = run_cli(static_cast<int>(argv.size()), argv.data());
-    testing::internal::GetCapturedStdout();
-    testing::internal::GetCapturedStderr();
-    return code;
+    return test::run_cli_captured(std::move(args)).code;
 }
 
 struct History {

@@ -20,27 +20,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-int run(std::vector<std::string> args) {
-    args.insert(args.begin(), "ifsim");
-    std::vector<const char*> argv;
-    for (const auto& a : args) {
-        argv.push_back(a.c_str());
-    }
-    return run_cli(static_cast<int>(argv.size()), argv.data());
-}
-
-struct Captured {
-    int code;
-    std::string err;
-    std::string out;
-};
+using Captured = test::CliRun;
 
 Captured run_captured(const std::vector<std::string>& args) {
-    testing::internal::CaptureStderr();
-    testing::internal::CaptureStdout();
-    const int code = run(args);
-    std::string out = testing::internal::GetCapturedStdout();
-    return {code, testing::internal::GetCapturedStderr(), out};
+    return test::run_cli_captured(args);
 }
 
 nlohmann::json summary(const fs::path& dir) {

@@ -28,17 +28,7 @@ const char* const gmsh = "scenes/fe-simple-shear-cnl-2d-gmsh.toml";
 const char* const mesh_line = "file = \"meshes/shear-box-2d.msh\"";
 
 int run(std::vector<std::string> args) {
-    args.insert(args.begin(), "ifsim");
-    std::vector<const char*> argv;
-    for (const auto& a : args) {
-        argv.push_back(a.c_str());
-    }
-    testing::internal::CaptureStderr();
-    testing::internal::CaptureStdout();
-    const int code = run_cli(static_cast<int>(argv.size()), argv.data());
-    testing::internal::GetCapturedStdout();
-    testing::internal::GetCapturedStderr();
-    return code;
+    return test::run_cli_captured(std::move(args)).code;
 }
 
 BoundaryValueScene parse(const std::string& file, const std::vector<std::string>& sets = {}) {

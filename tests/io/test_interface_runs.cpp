@@ -24,23 +24,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Captured {
-    int code;
-    std::string err;
-    std::string out;
-};
+using Captured = test::CliRun;
 
 Captured run_captured(std::vector<std::string> args) {
-    args.insert(args.begin(), "ifsim");
-    std::vector<const char*> argv;
-    for (const auto& a : args) {
-        argv.push_back(a.c_str());
-    }
-    testing::internal::CaptureStderr();
-    testing::internal::CaptureStdout();
-    const int code = run_cli(static_cast<int>(argv.size()), argv.data());
-    std::string out = testing::internal::GetCapturedStdout();
-    return {code, testing::internal::GetCapturedStderr(), out};
+    return test::run_cli_captured(std::move(args));
 }
 
 // history.csv as its header and rows of named numbers.
