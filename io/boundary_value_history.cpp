@@ -30,12 +30,20 @@ void optional_real(HistoryWriter& out, const std::optional<double>& v) {
 
 } // namespace
 
-std::vector<std::string> boundary_value_history_columns() {
-    return {"increment",      "stage",      "time", "newton_iterations",
-            "u_t1",           "u_t2",       "u_n",  "t_n",
-            "t_t1",           "t_t2",       "cuts", "residual",
-            "closed_points",  "s_p1",       "s_p2", "eps_n",
-            "band_thickness", "e_interface"};
+std::vector<std::string> boundary_value_history_columns(const BoundaryValueScene& scene) {
+    std::vector<std::string> out = {"increment",      "stage",      "time", "newton_iterations",
+                                    "u_t1",           "u_t2",       "u_n",  "t_n",
+                                    "t_t1",           "t_t2",       "cuts", "residual",
+                                    "closed_points",  "s_p1",       "s_p2", "eps_n",
+                                    "band_thickness", "e_interface"};
+    if (scene.contacts.size() > 1) {
+        for (const BoundaryValueInterface& c : scene.contacts) {
+            for (const char* column : {"t_n", "t_t1", "t_t2", "closed_points"}) {
+                out.push_back(c.pair.name + "." + column);
+            }
+        }
+    }
+    return out;
 }
 
 void write_boundary_value_row(HistoryWriter& out, const BoundaryValueRow& r) {
@@ -56,16 +64,28 @@ void write_boundary_value_row(HistoryWriter& out, const BoundaryValueRow& r) {
     for (const auto& v : {r.s_p1, r.s_p2, r.eps_n, r.band_thickness, r.e_interface}) {
         optional_real(out, v);
     }
+    for (const PairTractions& p : r.pairs) {
+        out.real(p.t_n);
+        out.real(p.t_t1);
+        out.real(p.t_t2);
+        out.integer(p.closed_points);
+    }
     out.end_row();
 }
 
 BoundaryValueProbe::BoundaryValueProbe(const BoundaryValueScene& scene)
-    : scene_(scene), dim_(scene.mesh.dim()),
-      faces_(scene.interface ? scene.interface->pair.slave_faces : scene.output.traction_faces),
+    : scene_(scene), main_(scene.main_contact()), dim_(scene.mesh.dim()),
+      faces_(main_ != nullptr ? main_->pair.slave_faces : scene.output.traction_faces),
       geometry_(face_set_geometry(scene.mesh, faces_)),
       plate_(scene.mesh.node_set(scene.output.plate)),
       soil_top_(scene.mesh.node_set(scene.output.soil_top)),
-      face_nodes_(scene.mesh.nodes_of_faces(faces_)) {}
+      face_nodes_(scene.mesh.nodes_of_faces(faces_)) {
+    if (scene.contacts.size() > 1) {
+        for (const BoundaryValueInterface& c : scene.contacts) {
+            pair_geometry_.push_back(face_set_geometry(scene.mesh, c.pair.slave_faces));
+        }
+    }
+}
 
 double BoundaryValueProbe::mean(const fem::StaticSolver& solver, const std::vector<int>& nodes,
                                 int d) const {
@@ -82,13 +102,20 @@ void BoundaryValueProbe::measure(const fem::StaticSolver& solver, BoundaryValueR
     row.u_t1 = mean(solver, plate_, 0) - mean(solver, soil_top_, 0);
     row.u_t2 = dim_ == 3 ? mean(solver, plate_, 1) - mean(solver, soil_top_, 1) : 0.0;
     row.u_n = mean(solver, soil_top_, v) - mean(solver, plate_, v);
-    if (scene_.interface) {
-        const fem::ContactResultant r = solver.contacts().front()->resultant();
+    if (main_ != nullptr) {
+        const auto& pairs = solver.contacts();
+        if (scene_.contacts.size() > 1) {
+            for (const auto& p : pairs) {
+                const fem::ContactResultant r = p->resultant();
+                row.pairs.push_back({r.t_N, r.shear[0], dim_ == 3 ? r.shear[1] : 0.0, r.closed});
+            }
+        }
+        const fem::ContactResultant r = pairs.at(scene_.output.contact)->resultant();
         row.t_n = r.t_N;
         row.t_t1 = r.shear[0];
         row.t_t2 = dim_ == 3 ? r.shear[1] : 0.0;
         row.closed_points = r.closed;
-        if (!scene_.interface->formulation.is_coulomb()) {
+        if (!main_->formulation.is_coulomb()) {
             row.s_p1 = r.sigma_p1;
             row.s_p2 = r.sigma_p2;
             row.eps_n = r.eps_N;
@@ -114,12 +141,15 @@ void BoundaryValueProbe::measure(const fem::StaticSolver& solver, BoundaryValueR
     row.t_t2 = dim_ == 3 ? R[1] / A - row.t_n * n[1] : 0.0;
 }
 
-void BoundaryValueProbe::initial(const fem::StaticSolver& solver, BoundaryValueRow& row) const {
+PairTractions BoundaryValueProbe::initial_tractions(const fem::StaticSolver& solver,
+                                                    const std::string& faces,
+                                                    const FaceGeometry& geometry,
+                                                    fem::Voigt6& mean_stress) const {
     // Area-weighted mean of sigma n over the faces, sigma the mean of each face's element.
     Vec3 t{};
-    fem::Voigt6 mean_stress{};
+    mean_stress = {};
     const int nip = solver.points_per_element();
-    for (const fem::FaceRef& f : scene_.mesh.face_set(faces_)) {
+    for (const fem::FaceRef& f : scene_.mesh.face_set(faces)) {
         fem::Voigt6 s{};
         for (int q = 0; q < nip; ++q) {
             const std::vector<double> y = solver.state(f.element, q);
@@ -130,24 +160,40 @@ void BoundaryValueProbe::initial(const fem::StaticSolver& solver, BoundaryValueR
         const FaceGeometry g = face_geometry(scene_.mesh, f);
         const Vec3 tf = traction(s, g.normal);
         for (std::size_t d = 0; d < 3; ++d) {
-            t[d] += g.area * tf[d] / geometry_.area;
+            t[d] += g.area * tf[d] / geometry.area;
         }
         for (std::size_t j = 0; j < 6; ++j) {
-            mean_stress[j] += g.area * s[j] / geometry_.area;
+            mean_stress[j] += g.area * s[j] / geometry.area;
         }
     }
-    const Vec3& n = geometry_.normal;
-    row.t_n = dot(t, n);
-    row.t_t1 = t[0] - row.t_n * n[0];
-    row.t_t2 = dim_ == 3 ? t[1] - row.t_n * n[1] : 0.0;
-    if (!scene_.interface) {
+    const Vec3& n = geometry.normal;
+    PairTractions out;
+    out.t_n = dot(t, n);
+    out.t_t1 = t[0] - out.t_n * n[0];
+    out.t_t2 = dim_ == 3 ? t[1] - out.t_n * n[1] : 0.0;
+    return out;
+}
+
+void BoundaryValueProbe::initial(const fem::StaticSolver& solver, BoundaryValueRow& row) const {
+    fem::Voigt6 mean_stress{};
+    const PairTractions main = initial_tractions(solver, faces_, geometry_, mean_stress);
+    row.t_n = main.t_n;
+    row.t_t1 = main.t_t1;
+    row.t_t2 = main.t_t2;
+    if (main_ == nullptr) {
         return;
     }
     row.closed_points = 0;
-    const BoundaryValueInterface& bi = *scene_.interface;
+    for (std::size_t k = 0; k < pair_geometry_.size(); ++k) {
+        fem::Voigt6 unused{};
+        row.pairs.push_back(initial_tractions(solver, scene_.contacts[k].pair.slave_faces,
+                                              pair_geometry_[k], unused));
+    }
+    const BoundaryValueInterface& bi = *main_;
     if (bi.formulation.is_coulomb()) {
         return;
     }
+    const Vec3& n = geometry_.normal;
     // The interface's start in the contact's frame: t1 along the shear direction in the plane.
     const auto& dir = bi.pair.shear_direction;
     Vec3 t1{dir[0], dir[1], dim_ == 2 ? 0.0 : dir[2]};

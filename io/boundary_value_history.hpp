@@ -13,6 +13,10 @@
 // closed_points: contact points in compression (empty without [interface]); s_p1, s_p2,
 // eps_n, band_thickness, e_interface: the continuum interface's means (empty for Coulomb
 // friction and without [interface]).
+// With contact the main contact columns (t_n, t_t1, t_t2, closed_points, s_p1, ...) describe
+// the pair named by [output] contact (default: the first pair). With more than one pair the
+// row ends with <name>.t_n,<name>.t_t1,<name>.t_t2,<name>.closed_points for every pair in the
+// scene's order, each the pair's own means as above.
 
 #include <optional>
 #include <string>
@@ -25,6 +29,12 @@
 
 namespace ifsim::io {
 
+// One pair's means: <name>.t_n, <name>.t_t1, <name>.t_t2, <name>.closed_points.
+struct PairTractions {
+    double t_n = 0.0, t_t1 = 0.0, t_t2 = 0.0;
+    int closed_points = 0;
+};
+
 struct BoundaryValueRow {
     long increment = 0;
     int stage = 0;
@@ -36,9 +46,10 @@ struct BoundaryValueRow {
     double residual = 0.0; // last relative residual
     std::optional<int> closed_points;
     std::optional<double> s_p1, s_p2, eps_n, band_thickness, e_interface;
+    std::vector<PairTractions> pairs; // every pair's, only with more than one pair
 };
 
-std::vector<std::string> boundary_value_history_columns();
+std::vector<std::string> boundary_value_history_columns(const BoundaryValueScene& scene);
 void write_boundary_value_row(HistoryWriter& out, const BoundaryValueRow& row);
 
 // The measurements of a row from the solver's committed state.
@@ -53,12 +64,17 @@ public:
 
 private:
     double mean(const fem::StaticSolver& solver, const std::vector<int>& nodes, int d) const;
+    // sigma n of the initial stress over a face set, area-weighted; also the mean stress.
+    PairTractions initial_tractions(const fem::StaticSolver& solver, const std::string& faces,
+                                    const FaceGeometry& geometry, fem::Voigt6& mean_stress) const;
 
     const BoundaryValueScene& scene_;
+    const BoundaryValueInterface* main_; // the main columns' pair, nullptr without contact
     int dim_;
-    std::string faces_; // slave faces or traction_faces
+    std::string faces_; // the main pair's slave faces or traction_faces
     FaceGeometry geometry_;
     std::vector<int> plate_, soil_top_, face_nodes_;
+    std::vector<FaceGeometry> pair_geometry_; // each pair's slave faces, with several pairs
 };
 
 } // namespace ifsim::io

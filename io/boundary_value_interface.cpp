@@ -70,34 +70,45 @@ fem::InterfaceStateFromStress state_function(const TableReader& t, const Materia
 
 } // namespace
 
+const std::vector<std::string_view>& boundary_value_interface_keys() {
+    static const std::vector<std::string_view> keys = {"slave",
+                                                       "master",
+                                                       "normal_penalty",
+                                                       "initial_contact",
+                                                       "shear_direction",
+                                                       "formulation",
+                                                       "model",
+                                                       "parameters",
+                                                       "roughness",
+                                                       "shear_band_thickness",
+                                                       "stutz_initial_stress",
+                                                       "friction_coefficient",
+                                                       "tangential_stiffness",
+                                                       "subincrement",
+                                                       "max_subincrement",
+                                                       "tolerance",
+                                                       "jacobian",
+                                                       "perturbation",
+                                                       "void_ratio",
+                                                       "intergranular_strain",
+                                                       "back_stress",
+                                                       "fabric"};
+    return keys;
+}
+
 BoundaryValueInterface
 read_boundary_value_interface(const TableReader& t, const fem::Mesh& mesh,
                               const std::map<std::string, BodyMaterial>& materials) {
-    t.allow_only({"slave",
-                  "master",
-                  "normal_penalty",
-                  "initial_contact",
-                  "shear_direction",
-                  "formulation",
-                  "model",
-                  "parameters",
-                  "roughness",
-                  "shear_band_thickness",
-                  "stutz_initial_stress",
-                  "friction_coefficient",
-                  "tangential_stiffness",
-                  "subincrement",
-                  "max_subincrement",
-                  "tolerance",
-                  "jacobian",
-                  "perturbation",
-                  "void_ratio",
-                  "intergranular_strain",
-                  "back_stress",
-                  "fabric"});
+    t.allow_only(boundary_value_interface_keys());
+    return read_boundary_value_pair(t, "interface", mesh, materials);
+}
+
+BoundaryValueInterface
+read_boundary_value_pair(const TableReader& t, const std::string& name, const fem::Mesh& mesh,
+                         const std::map<std::string, BodyMaterial>& materials) {
     BoundaryValueInterface out;
     fem::ContactPairSpec& pair = out.pair;
-    pair.name = "interface";
+    pair.name = name;
     pair.slave_faces = read_face_set(t, "slave", mesh);
     pair.master_faces = read_face_set(t, "master", mesh);
     out.slave_body = body_of_faces(mesh, pair.slave_faces, materials);

@@ -1,7 +1,9 @@
 #pragma once
-// The [interface] table of a boundary-value scene: the one contact pair, soil side (slave
-// faces) against structure (master faces), with every formulation key of the interface-test
-// [interface] table (read_interface_formulation, same meaning and defaults) plus
+// The [interface] table of a boundary-value scene: one contact pair, soil side (slave faces)
+// against structure (master faces), named "interface"; each [[contact]] entry
+// (boundary_value_contacts.hpp) is the same table with a name. Keys: every formulation key of
+// the interface-test [interface] table (read_interface_formulation, same meaning and defaults)
+// plus
 //
 //   slave, master      face sets ("soil.bottom", "plate.top")
 //   normal_penalty     k_N in kPa/m (default 1e8)
@@ -20,6 +22,8 @@
 
 #include <map>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "fem/contact_pair.hpp"
 #include "fem/mesh.hpp"
@@ -36,9 +40,18 @@ struct BoundaryValueInterface {
     fem::ContactPairSpec pair;   // ready for StaticSolver::add_contact
 };
 
+// The keys of the [interface] table (a [[contact]] entry has these and its name).
+const std::vector<std::string_view>& boundary_value_interface_keys();
+
+// The [interface] table: checks its keys, the pair is named "interface".
 // `materials`: each body's material by body name. Throws SceneError.
 BoundaryValueInterface
 read_boundary_value_interface(const TableReader& interface, const fem::Mesh& mesh,
                               const std::map<std::string, BodyMaterial>& materials);
+
+// A pair's keys of a table whose keys the caller has checked; the pair is named `name`.
+BoundaryValueInterface
+read_boundary_value_pair(const TableReader& table, const std::string& name, const fem::Mesh& mesh,
+                         const std::map<std::string, BodyMaterial>& materials);
 
 } // namespace ifsim::io

@@ -16,17 +16,42 @@ namespace ifsim::io {
 
 namespace {
 
-// Builds the solver and its contact pair; throws what fem throws for an invalid set-up.
+// Builds the solver and its contact pairs (in the scene's order); throws what fem throws for an
+// invalid set-up.
 std::unique_ptr<fem::StaticSolver> make_solver(const BoundaryValueScene& scene, bool simd) {
     fem::SolverSettings settings = scene.settings;
     settings.update.simd = simd;
     auto solver = std::make_unique<fem::StaticSolver>(scene.mesh, scene.set_materials(), settings);
-    if (scene.interface) {
-        fem::ContactPairSpec pair = scene.interface->pair;
+    for (const BoundaryValueInterface& c : scene.contacts) {
+        fem::ContactPairSpec pair = c.pair;
         pair.options.simd = simd;
         solver->add_contact(std::move(pair));
     }
     return solver;
+}
+
+// A pair's keys for summary.json.
+nlohmann::ordered_json pair_details(const BoundaryValueInterface& bi) {
+    nlohmann::ordered_json j = {{"slave", bi.pair.slave_faces},
+                                {"master", bi.pair.master_faces},
+                                {"formulation", bi.formulation.formulation},
+                                {"initial_contact", bi.initial_contact},
+                                {"normal_penalty", bi.pair.normal_penalty}};
+    if (bi.formulation.is_coulomb()) {
+        j["friction_coefficient"] = bi.pair.friction.friction_coefficient;
+        j["tangential_stiffness"] = bi.pair.friction.tangential_stiffness;
+    } else {
+        j["model"] = bi.formulation.material.model;
+        j["parameters"] = bi.formulation.material.parameters;
+        j["roughness"] = bi.formulation.material.roughness;
+        j["shear_band_thickness"] = bi.pair.options.interface.shear_band_thickness;
+        j["subincrement"] = bi.formulation.subincrement;
+        j["jacobian"] = bi.formulation.jacobian;
+        if (bi.formulation.formulation == "stutz") {
+            j["stutz_initial_stress"] = bi.formulation.stutz_initial_stress;
+        }
+    }
+    return j;
 }
 
 } // namespace
@@ -37,7 +62,7 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
     BoundaryValueRunOutcome out;
     out.nodes = scene.mesh.n_nodes();
     out.elements = scene.mesh.n_elements();
-    HistoryWriter history(dir, boundary_value_history_columns());
+    HistoryWriter history(dir, boundary_value_history_columns(scene));
     ProgressLine line(progress, scene.total_steps(), static_cast<int>(scene.stages.size()));
     std::unique_ptr<fem::StaticSolver> solver;
     try {
@@ -103,7 +128,7 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
 void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& scene,
                                 const BoundaryValueRunOutcome& run, double parse_s) {
     const fem::SolverCounters& c = run.counters;
-    const bool contact = scene.interface.has_value();
+    const bool contact = !scene.contacts.empty();
     summary.ok = run.ok;
     summary.reason = run.reason;
     auto& k = summary.counters;
@@ -154,28 +179,19 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     }
     d["iterations_per_increment"] = {{"mean", mean}, {"max", max}};
     if (contact) {
-        const BoundaryValueInterface& bi = *scene.interface;
-        nlohmann::ordered_json j = {{"slave", bi.pair.slave_faces},
-                                    {"master", bi.pair.master_faces},
-                                    {"formulation", bi.formulation.formulation},
-                                    {"initial_contact", bi.initial_contact},
-                                    {"normal_penalty", bi.pair.normal_penalty}};
-        if (bi.formulation.is_coulomb()) {
-            j["friction_coefficient"] = bi.pair.friction.friction_coefficient;
-            j["tangential_stiffness"] = bi.pair.friction.tangential_stiffness;
-        } else {
-            j["model"] = bi.formulation.material.model;
-            j["parameters"] = bi.formulation.material.parameters;
-            j["roughness"] = bi.formulation.material.roughness;
-            j["shear_band_thickness"] = bi.pair.options.interface.shear_band_thickness;
-            j["subincrement"] = bi.formulation.subincrement;
-            j["jacobian"] = bi.formulation.jacobian;
-            if (bi.formulation.formulation == "stutz") {
-                j["stutz_initial_stress"] = bi.formulation.stutz_initial_stress;
-            }
+        // One pair: "interface" as always; every pair (with its name) under "contacts".
+        if (scene.contacts.size() == 1) {
+            d["interface"] = pair_details(scene.contacts.front());
         }
-        d["interface"] = j;
-        d["formulation"] = bi.formulation.formulation;
+        nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
+        for (const BoundaryValueInterface& bi : scene.contacts) {
+            nlohmann::ordered_json j = {{"name", bi.pair.name}};
+            j.update(pair_details(bi));
+            pairs.push_back(j);
+        }
+        d["contacts"] = pairs;
+        d["history_contact"] = scene.main_contact()->pair.name;
+        d["formulation"] = scene.main_contact()->formulation.formulation;
     }
     d["linear_solver"] = scene.linear_solver;
     d["tangent"] = scene.tangent;

@@ -48,15 +48,40 @@ std::string node_set(const TableReader& t, std::string_view key, const fem::Mesh
     return name;
 }
 
-BoundaryValueOutput read_output(const TableReader& t, const fem::Mesh& mesh, bool interface) {
-    t.allow_only({"plate", "soil_top", "traction_faces"});
+// [output] contact: the name of a pair; the first pair by default.
+std::size_t main_contact(const TableReader& t,
+                         const std::vector<BoundaryValueInterface>& contacts) {
+    if (!t.has("contact")) {
+        return 0;
+    }
+    if (contacts.empty()) {
+        t.fail("contact", "applies to runs with contact pairs ([interface] or [[contact]]) "
+                          "only; expected no such key");
+    }
+    const std::string name = t.string("contact");
+    std::string list;
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+        if (contacts[k].pair.name == name) {
+            return k;
+        }
+        list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", contacts[k].pair.name);
+    }
+    t.fail("contact",
+           fmt::format("expected the name of a contact pair: {}; got \"{}\"", list, name));
+}
+
+BoundaryValueOutput read_output(const TableReader& t, const fem::Mesh& mesh,
+                                const std::vector<BoundaryValueInterface>& contacts) {
+    t.allow_only({"plate", "soil_top", "traction_faces", "contact"});
     BoundaryValueOutput out;
     out.plate = node_set(t, "plate", mesh);
     out.soil_top = node_set(t, "soil_top", mesh);
-    if (interface) {
+    out.contact = main_contact(t, contacts);
+    if (!contacts.empty()) {
         if (t.has("traction_faces")) {
-            t.fail("traction_faces", "applies to runs without [interface] only (with it the "
-                                     "tractions are the contact's); expected no such key");
+            t.fail("traction_faces", "applies to runs without [interface] or [[contact]] only "
+                                     "(with them the tractions are the contact's); expected no "
+                                     "such key");
         }
         return out;
     }
@@ -118,6 +143,10 @@ void read_mesh_file_and_regions(const TableReader& root, const TableReader& mesh
 
 } // namespace
 
+const BoundaryValueInterface* BoundaryValueScene::main_contact() const {
+    return contacts.empty() ? nullptr : &contacts.at(output.contact);
+}
+
 long BoundaryValueScene::total_steps() const {
     long n = 0;
     for (const auto& s : stages) {
@@ -137,7 +166,7 @@ std::vector<fem::ElementSetMaterial> BoundaryValueScene::set_materials() const {
 BoundaryValueScene read_boundary_value_scene(const toml::table& table, const std::string& file) {
     const TableReader root(table, file, "");
     root.allow_only({"kind", "description", "mesh", "body", "region", "material", "interface",
-                     "solver", "output", "stage"});
+                     "contact", "solver", "output", "stage"});
     BoundaryValueScene scene;
     if (root.has("description")) {
         scene.description = root.string("description");
@@ -157,12 +186,9 @@ BoundaryValueScene read_boundary_value_scene(const toml::table& table, const std
         read_mesh_file_and_regions(root, mesh, names, scene);
     }
 
-    if (root.has("interface")) {
-        scene.interface =
-            read_boundary_value_interface(root.table("interface"), scene.mesh, scene.materials);
-    }
+    scene.contacts = read_boundary_value_contacts(root, scene.mesh, scene.materials);
     read_solver(root, scene);
-    scene.output = read_output(root.table("output"), scene.mesh, scene.interface.has_value());
+    scene.output = read_output(root.table("output"), scene.mesh, scene.contacts);
     int number = 1;
     for (const TableReader& st : root.array_of_tables("stage")) {
         scene.stages.push_back(read_boundary_value_stage(st, scene.mesh, number++));

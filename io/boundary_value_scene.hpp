@@ -1,12 +1,12 @@
 #pragma once
 // A scene of kind "boundary-value" (finite elements; docs/scenes.md): structured bodies merged
-// into one mesh with a material per body, or a Gmsh mesh file with a material per region; at
-// most one contact pair with its interface formulation, the solver settings, the output sets
+// into one mesh with a material per body, or a Gmsh mesh file with a material per region; the
+// contact pairs ([interface] or [[contact]]) with their interface formulations, the solver
+// settings, the output sets
 // and the stages. Every key is checked at parse time, sets against the mesh and each stage's
 // constraints against each other.
 
 #include <map>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,7 +15,7 @@
 #include "fem/mesh.hpp"
 #include "fem/solver_settings.hpp"
 #include "fem/stage.hpp"
-#include "io/boundary_value_interface.hpp"
+#include "io/boundary_value_contacts.hpp"
 #include "io/boundary_value_material.hpp"
 #include "io/boundary_value_mesh.hpp"
 
@@ -25,7 +25,8 @@ namespace ifsim::io {
 struct BoundaryValueOutput {
     std::string plate;          // node set: "the plate"
     std::string soil_top;       // node set: the soil's top
-    std::string traction_faces; // face set, runs without [interface] only
+    std::string traction_faces; // face set, runs without contact pairs only
+    std::size_t contact = 0;    // [output] contact: index of the pair of the main columns
 };
 
 struct BoundaryValueScene {
@@ -38,11 +39,14 @@ struct BoundaryValueScene {
     fem::SolverSettings settings;
     std::string linear_solver; // umfpack | klu
     std::string tangent;       // perturbation | fixed-substeps | rate
-    std::optional<BoundaryValueInterface> interface;
+    // [interface] (one pair, named "interface") or the [[contact]] entries, in order.
+    std::vector<BoundaryValueInterface> contacts;
     BoundaryValueOutput output;
     std::vector<fem::Stage> stages;
 
     long total_steps() const;
+    // The pair that history.csv's main contact columns describe; nullptr without contact.
+    const BoundaryValueInterface* main_contact() const;
     // The solver's materials in body order.
     std::vector<fem::ElementSetMaterial> set_materials() const;
 };

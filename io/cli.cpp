@@ -22,8 +22,8 @@ constexpr const char* app_footer = R"(
                      [--seconds S] [--jacobian J] [--subincrement fixed|adaptive]
 Scene kinds: element-test (one material point), interface-test (simple interface shear:
 a sample in series with one interface point, paper section 5), boundary-value (finite
-elements: structured 2D/3D bodies or a Gmsh .msh mesh, one contact pair with its interface
-formulation, stages of prescribed displacements, ties, pressures, springs and gravity).
+elements: structured 2D/3D bodies or a Gmsh .msh mesh, contact pairs with their interface
+formulations, stages of prescribed displacements, ties, pressures, springs and gravity).
 Units kPa and m; compression negative; Voigt order 11 22 33 12 13 23 with tensor shear
 strains. Scene schema: docs/scenes.md; example scenes: scenes/. `ifsim run --help` and
 `ifsim kernel-bench --help` explain each command.)";

@@ -112,8 +112,10 @@ void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double p
         const BoundaryValueRunOutcome run = run_boundary_value_scene(s, dir, progress, !opt.scalar);
         add_boundary_value_results(summary, s, run, parse_s);
         label = fmt::format("{}D FE", s.mesh_spec.dimension);
-        if (s.interface) {
-            label += ", " + s.interface->formulation.formulation;
+        if (s.contacts.size() == 1) {
+            label += ", " + s.contacts.front().formulation.formulation;
+        } else if (!s.contacts.empty()) {
+            label += fmt::format(", {} contact pairs", s.contacts.size());
         }
         steps = s.total_steps();
         return;

@@ -38,6 +38,10 @@ std::string TableReader::key_path(std::string_view key) const {
 }
 
 void TableReader::allow_only(std::initializer_list<std::string_view> known) const {
+    allow_only(std::vector<std::string_view>(known));
+}
+
+void TableReader::allow_only(const std::vector<std::string_view>& known) const {
     for (const auto& [k, v] : *table_) {
         bool ok = false;
         for (const auto& name : known) {

@@ -45,6 +45,7 @@ public:
 
     // Throws for the first key of the table that is not in `known`.
     void allow_only(std::initializer_list<std::string_view> known) const;
+    void allow_only(const std::vector<std::string_view>& known) const;
 
     bool has(std::string_view key) const;
     const toml::node* find(std::string_view key) const;

@@ -110,15 +110,16 @@ TEST(BoundaryValueScene, ShippedScenesAreRead) {
         EXPECT_TRUE(s.mesh.node_sets.contains(s.output.plate)) << name;
     }
     const BoundaryValueScene s = parse(cnl_2d);
-    ASSERT_TRUE(s.interface.has_value());
-    EXPECT_EQ(s.interface->formulation.formulation, "novel");
-    EXPECT_DOUBLE_EQ(s.interface->formulation.material.roughness, 0.9);
+    ASSERT_EQ(s.contacts.size(), 1u);
+    EXPECT_EQ(s.contacts[0].pair.name, "interface");
+    EXPECT_EQ(s.contacts[0].formulation.formulation, "novel");
+    EXPECT_DOUBLE_EQ(s.contacts[0].formulation.material.roughness, 0.9);
     // Sets are "<body>.<set>"; each body's elements are the element set "<body>".
     EXPECT_EQ(s.mesh.element_set("soil").size(), 1u);
     EXPECT_EQ(s.mesh.node_set("plate.all").size(), 4u);
     // The interface state: stress from the local continuum stress, the keys' void ratio and
     // intergranular strain in local axes.
-    const std::vector<double> y = s.interface->pair.initial_state({-100.0, -50.0, -50.0, 0, 0, 0});
+    const std::vector<double> y = s.contacts[0].pair.initial_state({-100.0, -50.0, -50.0, 0, 0, 0});
     EXPECT_DOUBLE_EQ(y[0], -100.0);
     EXPECT_DOUBLE_EQ(y[6], 0.81);
     EXPECT_DOUBLE_EQ(y[7 + 3], 7.0710678e-5);
@@ -133,7 +134,7 @@ TEST(BoundaryValueScene, SetReachesNestedKeys) {
         parse(cnl_2d, {"stage.2.displacement.1.change=0.001", "interface.roughness=0.5",
                        "material.sand.void_ratio=0.75", "body.1.elements=[2, 1]"});
     EXPECT_DOUBLE_EQ(s.stages[1].displacements[0].change, 0.001);
-    EXPECT_DOUBLE_EQ(s.interface->formulation.material.roughness, 0.5);
+    EXPECT_DOUBLE_EQ(s.contacts.at(0).formulation.material.roughness, 0.5);
     EXPECT_DOUBLE_EQ(s.materials.at("soil").void_ratio, 0.75);
     EXPECT_EQ(s.mesh.element_set("soil").size(), 2u);
 }

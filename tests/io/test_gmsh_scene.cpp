@@ -108,7 +108,7 @@ TEST(GmshScene, BuildsTheStructuredTwinsMesh) {
     ASSERT_EQ(b.set_materials().size(), 2u);
     EXPECT_EQ(b.set_materials()[0].element_set, "soil");
     EXPECT_EQ(b.set_materials()[0].initial_state, a.set_materials()[0].initial_state);
-    EXPECT_EQ(b.interface->slave_body, "soil");
+    EXPECT_EQ(b.contacts.at(0).slave_body, "soil");
 }
 
 TEST(GmshScene, SameHistoryAsTheStructuredScene) {
