@@ -19,6 +19,7 @@
 #include "io/interface_test_scene.hpp"
 #include "io/scene_error.hpp"
 #include "io/scene_toml.hpp"
+#include "tests/io/boundary_value_test_support.hpp"
 #include "tests/io/scene_test_support.hpp"
 
 namespace ifsim::io {
@@ -70,46 +71,18 @@ nlohmann::json summary(const fs::path& dir) {
     return nlohmann::json::parse(test::read_text(dir / "summary.json"));
 }
 
-BoundaryValueScene parse(const std::string& file, const std::vector<std::string>& sets = {}) {
-    toml::table t = load_scene_table(file);
-    for (const auto& s : sets) {
-        apply_override(t, s, file);
-    }
-    return read_boundary_value_scene(t, file);
-}
-
-// The SceneError of a scene text: names the file and the key, says what was expected.
-void expect_error(const std::string& text, const std::string& key, const std::string& words) {
-    const std::string file = test::write_scene(text);
-    try {
-        read_boundary_value_scene(load_scene_table(file), file);
-        ADD_FAILURE() << "no error for key " << key;
-    } catch (const SceneError& e) {
-        EXPECT_EQ(e.key(), key) << e.what();
-        EXPECT_EQ(e.file(), file);
-        EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
-        EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();
-    }
-}
-
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-    const auto at = text.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    return text.replace(at, from.size(), to);
-}
-
 TEST(BoundaryValueScene, ShippedScenesAreRead) {
     for (const char* name :
          {"fe-simple-shear-cnl-2d", "fe-simple-shear-cnl-3d", "fe-simple-shear-cns-2d",
           "fe-simple-shear-stutz-2d", "fe-simple-shear-coulomb-2d", "fe-appendix-c-continuum-2d",
           "fe-sliding-block-2d"}) {
         const std::string file = std::string("scenes/") + name + ".toml";
-        const BoundaryValueScene s = parse(file);
+        const BoundaryValueScene s = test::parse_boundary_value(file);
         EXPECT_FALSE(s.stages.empty()) << name;
         EXPECT_GT(s.mesh.n_elements(), 0) << name;
         EXPECT_TRUE(s.mesh.node_sets.contains(s.output.plate)) << name;
     }
-    const BoundaryValueScene s = parse(cnl_2d);
+    const BoundaryValueScene s = test::parse_boundary_value(cnl_2d);
     ASSERT_EQ(s.contacts.size(), 1u);
     EXPECT_EQ(s.contacts[0].pair.name, "interface");
     EXPECT_EQ(s.contacts[0].formulation.formulation, "novel");
@@ -124,15 +97,15 @@ TEST(BoundaryValueScene, ShippedScenesAreRead) {
     EXPECT_DOUBLE_EQ(y[6], 0.81);
     EXPECT_DOUBLE_EQ(y[7 + 3], 7.0710678e-5);
     // CNS: the spring's total stiffness is K times the top's area (0.1 m per m in 2D).
-    const BoundaryValueScene cns = parse("scenes/fe-simple-shear-cns-2d.toml");
+    const BoundaryValueScene cns = test::parse_boundary_value("scenes/fe-simple-shear-cns-2d.toml");
     ASSERT_EQ(cns.stages[1].springs.size(), 1u);
     EXPECT_NEAR(cns.stages[1].springs[0].total_stiffness, 400.0e3 * 0.1, 1e-6);
 }
 
 TEST(BoundaryValueScene, SetReachesNestedKeys) {
-    const BoundaryValueScene s =
-        parse(cnl_2d, {"stage.2.displacement.1.change=0.001", "interface.roughness=0.5",
-                       "material.sand.void_ratio=0.75", "body.1.elements=[2, 1]"});
+    const BoundaryValueScene s = test::parse_boundary_value(
+        cnl_2d, {"stage.2.displacement.1.change=0.001", "interface.roughness=0.5",
+                 "material.sand.void_ratio=0.75", "body.1.elements=[2, 1]"});
     EXPECT_DOUBLE_EQ(s.stages[1].displacements[0].change, 0.001);
     EXPECT_DOUBLE_EQ(s.contacts.at(0).formulation.material.roughness, 0.5);
     EXPECT_DOUBLE_EQ(s.materials.at("soil").void_ratio, 0.75);
@@ -141,41 +114,52 @@ TEST(BoundaryValueScene, SetReachesNestedKeys) {
 
 TEST(BoundaryValueScene, BadInputNamesFileAndKey) {
     const std::string text = test::read_text(cnl_2d);
-    expect_error(replaced(text, "dimension = 2", "dimension = 2\ncolour = 1"), "mesh.colour",
-                 "unknown key");
-    expect_error(replaced(text, "dimension = 2", "dimension = \"two\""), "mesh.dimension",
-                 "expected an integer");
-    expect_error(replaced(text, "size = [0.1, 0.02]", "size = [0.1]"), "body.1.size", "array of 2");
-    expect_error(replaced(text, "void_ratio = 0.81\nstress", "stress"), "material.sand.void_ratio",
-                 "missing");
-    expect_error(replaced(text, "master = \"plate.top\"", "master = \"plate.up\""),
-                 "interface.master", "face set");
-    expect_error(replaced(text, "roughness = 0.9", "friction_coefficient = 0.3"),
-                 "interface.friction_coefficient", "coulomb");
-    expect_error(replaced(text, "material = \"steel\"", "material = \"iron\""), "body.2.material",
-                 "material");
-    expect_error(replaced(text, "direction = \"x\", change", "direction = \"z\", change"),
-                 "stage.2.displacement.1.direction", "\"x\" | \"y\"");
-    expect_error(replaced(text, "steps = 600", "steps = 0"), "stage.2.steps", "integer");
-    expect_error(replaced(text, "soil_top = \"soil.top\"", ""), "output.soil_top", "missing");
+    test::expect_boundary_value_error(
+        test::replaced(text, "dimension = 2", "dimension = 2\ncolour = 1"), "mesh.colour",
+        "unknown key");
+    test::expect_boundary_value_error(test::replaced(text, "dimension = 2", "dimension = \"two\""),
+                                      "mesh.dimension", "expected an integer");
+    test::expect_boundary_value_error(test::replaced(text, "size = [0.1, 0.02]", "size = [0.1]"),
+                                      "body.1.size", "array of 2");
+    test::expect_boundary_value_error(test::replaced(text, "void_ratio = 0.81\nstress", "stress"),
+                                      "material.sand.void_ratio", "missing");
+    test::expect_boundary_value_error(
+        test::replaced(text, "master = \"plate.top\"", "master = \"plate.up\""), "interface.master",
+        "face set");
+    test::expect_boundary_value_error(
+        test::replaced(text, "roughness = 0.9", "friction_coefficient = 0.3"),
+        "interface.friction_coefficient", "coulomb");
+    test::expect_boundary_value_error(
+        test::replaced(text, "material = \"steel\"", "material = \"iron\""), "body.2.material",
+        "material");
+    test::expect_boundary_value_error(
+        test::replaced(text, "direction = \"x\", change", "direction = \"z\", change"),
+        "stage.2.displacement.1.direction", "\"x\" | \"y\"");
+    test::expect_boundary_value_error(test::replaced(text, "steps = 600", "steps = 0"),
+                                      "stage.2.steps", "integer");
+    test::expect_boundary_value_error(test::replaced(text, "soil_top = \"soil.top\"", ""),
+                                      "output.soil_top", "missing");
     // Traction faces belong to runs without contact.
-    expect_error(replaced(text, "soil_top = \"soil.top\"",
-                          "soil_top = \"soil.top\"\ntraction_faces = \"soil.bottom\""),
-                 "output.traction_faces", "without [interface]");
+    test::expect_boundary_value_error(
+        test::replaced(text, "soil_top = \"soil.top\"",
+                       "soil_top = \"soil.top\"\ntraction_faces = \"soil.bottom\""),
+        "output.traction_faces", "without [interface]");
     // A state key checked at parse time with the soil's stress: |h| > R.
-    expect_error(replaced(text, "intergranular_strain = [0.0, 0.0, 0.0, 7.0710678e-5, 0.0, 0.0]",
-                          "intergranular_strain = [0.0, 0.0, 0.0, 7.0e-3, 0.0, 0.0]"),
-                 "interface.intergranular_strain", "R =");
+    test::expect_boundary_value_error(
+        test::replaced(text, "intergranular_strain = [0.0, 0.0, 0.0, 7.0710678e-5, 0.0, 0.0]",
+                       "intergranular_strain = [0.0, 0.0, 0.0, 7.0e-3, 0.0, 0.0]"),
+        "interface.intergranular_strain", "R =");
     // Contradicting constraints of a stage.
-    expect_error(replaced(text,
-                          "{ nodes = \"soil.top\", direction = \"x\" } ]\nequal = [ { nodes "
-                          "= \"soil.top\", direction = \"y\" }, { nodes = \"soil.bottom\", "
-                          "direction = \"x\" },\n          { nodes = \"soil.bottom\", "
-                          "direction = \"y\" } ]\npressure = [ { faces = \"soil.top\", from "
-                          "= 100.0, to = 100.0 } ]\n\n[[stage]]\nname = \"shear\"",
-                          "{ nodes = \"soil.top\", direction = \"x\" } ]\nequal = [ { nodes = "
-                          "\"soil.top\", direction = \"x\" } ]\n\n[[stage]]\nname = \"shear\""),
-                 "stage.1", "contradict");
+    test::expect_boundary_value_error(
+        test::replaced(text,
+                       "{ nodes = \"soil.top\", direction = \"x\" } ]\nequal = [ { nodes "
+                       "= \"soil.top\", direction = \"y\" }, { nodes = \"soil.bottom\", "
+                       "direction = \"x\" },\n          { nodes = \"soil.bottom\", "
+                       "direction = \"y\" } ]\npressure = [ { faces = \"soil.top\", from "
+                       "= 100.0, to = 100.0 } ]\n\n[[stage]]\nname = \"shear\"",
+                       "{ nodes = \"soil.top\", direction = \"x\" } ]\nequal = [ { nodes = "
+                       "\"soil.top\", direction = \"x\" } ]\n\n[[stage]]\nname = \"shear\""),
+        "stage.1", "contradict");
 }
 
 TEST(BoundaryValueRun, ShortRunWritesHistoryAndSummary) {

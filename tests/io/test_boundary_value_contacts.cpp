@@ -15,6 +15,7 @@
 #include "io/boundary_value_scene.hpp"
 #include "io/scene_error.hpp"
 #include "io/scene_toml.hpp"
+#include "tests/io/boundary_value_test_support.hpp"
 #include "tests/io/scene_test_support.hpp"
 
 namespace ifsim::io {
@@ -144,24 +145,6 @@ BoundaryValueScene parse_text(const std::string& text, const std::vector<std::st
     return read_boundary_value_scene(t, file);
 }
 
-void expect_error(const std::string& text, const std::string& key, const std::string& words) {
-    const std::string file = test::write_scene(text);
-    try {
-        read_boundary_value_scene(load_scene_table(file), file);
-        ADD_FAILURE() << "no error for key " << key;
-    } catch (const SceneError& e) {
-        EXPECT_EQ(e.key(), key) << e.what();
-        EXPECT_EQ(e.file(), file);
-        EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
-    }
-}
-
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-    const auto at = text.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    return text.replace(at, from.size(), to);
-}
-
 TEST(BoundaryValueContacts, EntriesAreReadInOrderAndSetReachesThem) {
     const BoundaryValueScene s =
         parse_text(two_block_scene(""), {"contact.2.friction_coefficient=0.4"});
@@ -182,22 +165,29 @@ TEST(BoundaryValueContacts, EntriesAreReadInOrderAndSetReachesThem) {
 
 TEST(BoundaryValueContacts, BadEntriesNameFileAndKey) {
     const std::string text = two_block_scene("");
-    expect_error(replaced(text, "name = \"right\"", "name = \"left\""), "contact.2.name",
-                 "not used by another");
-    expect_error(replaced(text, "name = \"right\"", "name = \"right side\""), "contact.2.name",
-                 "[A-Za-z0-9_-]+");
-    expect_error(replaced(text, "name = \"right\"\n", ""), "contact.2.name", "missing");
-    expect_error(replaced(text, "[output]",
-                          "[interface]\nslave = \"a.bottom\"\nmaster = \"plate.top\"\n\n[output]"),
-                 "contact", "[interface]");
-    expect_error(two_block_scene("middle"), "output.contact", "\"left\", \"right\"");
+    test::expect_boundary_value_error(test::replaced(text, "name = \"right\"", "name = \"left\""),
+                                      "contact.2.name", "not used by another");
+    test::expect_boundary_value_error(
+        test::replaced(text, "name = \"right\"", "name = \"right side\""), "contact.2.name",
+        "[A-Za-z0-9_-]+");
+    test::expect_boundary_value_error(test::replaced(text, "name = \"right\"\n", ""),
+                                      "contact.2.name", "missing");
+    test::expect_boundary_value_error(
+        test::replaced(text, "[output]",
+                       "[interface]\nslave = \"a.bottom\"\nmaster = \"plate.top\"\n\n[output]"),
+        "contact", "[interface]");
+    test::expect_boundary_value_error(two_block_scene("middle"), "output.contact",
+                                      "\"left\", \"right\"");
     // The per-pair keys are [interface]'s, checked the same way.
-    expect_error(replaced(text, "slave = \"b.bottom\"", "slave = \"b.under\""), "contact.2.slave",
-                 "face set");
-    expect_error(replaced(text, "friction_coefficient = 0.3", "roughness = 0.3"),
-                 "contact.2.roughness", "coulomb");
-    expect_error(replaced(text, "friction_coefficient = 0.3", "colour = 1"), "contact.2.colour",
-                 "unknown key");
+    test::expect_boundary_value_error(
+        test::replaced(text, "slave = \"b.bottom\"", "slave = \"b.under\""), "contact.2.slave",
+        "face set");
+    test::expect_boundary_value_error(
+        test::replaced(text, "friction_coefficient = 0.3", "roughness = 0.3"),
+        "contact.2.roughness", "coulomb");
+    test::expect_boundary_value_error(
+        test::replaced(text, "friction_coefficient = 0.3", "colour = 1"), "contact.2.colour",
+        "unknown key");
 }
 
 // Each pair slides with its own mu: t_t1 / t_n = mu of the pair (t_t1 opposes the +x motion of

@@ -16,6 +16,7 @@
 #include "io/cli.hpp"
 #include "io/scene_error.hpp"
 #include "io/scene_toml.hpp"
+#include "tests/io/boundary_value_test_support.hpp"
 #include "tests/io/scene_test_support.hpp"
 
 namespace ifsim::io {
@@ -31,40 +32,11 @@ int run(std::vector<std::string> args) {
     return test::run_cli_captured(std::move(args)).code;
 }
 
-BoundaryValueScene parse(const std::string& file, const std::vector<std::string>& sets = {}) {
-    toml::table t = load_scene_table(file);
-    for (const auto& s : sets) {
-        apply_override(t, s, file);
-    }
-    return read_boundary_value_scene(t, file);
-}
-
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-    const auto at = text.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    return text.replace(at, from.size(), to);
-}
-
 // The shipped gmsh scene's text with the mesh file given by its absolute path (the scene is
 // written to a temporary folder).
 std::string gmsh_scene_text() {
     const std::string mesh = fs::absolute("scenes/meshes/shear-box-2d.msh").string();
-    return replaced(test::read_text(gmsh), mesh_line, "file = \"" + mesh + "\"");
-}
-
-void expect_error(const std::string& text, const std::string& key,
-                  const std::vector<std::string>& words) {
-    const std::string file = test::write_scene(text);
-    try {
-        read_boundary_value_scene(load_scene_table(file), file);
-        ADD_FAILURE() << "no error for key " << key;
-    } catch (const SceneError& e) {
-        EXPECT_EQ(e.key(), key) << e.what();
-        EXPECT_EQ(e.file(), file);
-        for (const auto& w : words) {
-            EXPECT_NE(std::string(e.what()).find(w), std::string::npos) << w << "\n" << e.what();
-        }
-    }
+    return test::replaced(test::read_text(gmsh), mesh_line, "file = \"" + mesh + "\"");
 }
 
 std::vector<std::vector<std::string>> csv(const fs::path& file) {
@@ -82,8 +54,8 @@ std::vector<std::vector<std::string>> csv(const fs::path& file) {
 }
 
 TEST(GmshScene, BuildsTheStructuredTwinsMesh) {
-    const BoundaryValueScene a = parse(structured);
-    const BoundaryValueScene b = parse(gmsh);
+    const BoundaryValueScene a = test::parse_boundary_value(structured);
+    const BoundaryValueScene b = test::parse_boundary_value(gmsh);
     EXPECT_EQ(b.mesh_spec.file, "meshes/shear-box-2d.msh");
     EXPECT_EQ(b.mesh.type, a.mesh.type);
     EXPECT_EQ(b.mesh.coordinates, a.mesh.coordinates);
@@ -189,7 +161,7 @@ $Elements
 9 3 2 4 2 5 6 8 7
 $EndElements
 )";
-    const BoundaryValueScene s = parse(gmsh, {"mesh.file=" + mesh.string()});
+    const BoundaryValueScene s = test::parse_boundary_value(gmsh, {"mesh.file=" + mesh.string()});
     EXPECT_EQ(s.mesh.element_set("soil").size(), 2u);
     EXPECT_EQ(s.mesh.face_set("soil.bottom").size(), 2u);
     EXPECT_EQ(s.mesh.node_set("soil.top").size(), 3u);
@@ -200,40 +172,47 @@ $EndElements
 TEST(GmshScene, BadInputNamesFileAndKey) {
     const std::string text = gmsh_scene_text();
     // A region naming a set the file does not have.
-    expect_error(replaced(text, "set = \"plate\"", "set = \"steel\""), "region.2.set",
-                 {"element set of the mesh", "\"steel\"", "\"plate\""});
-    expect_error(replaced(text, "material = \"steel\"", "material = \"iron\""), "region.2.material",
-                 {"[material.NAME]", "\"iron\""});
+    test::expect_boundary_value_error(test::replaced(text, "set = \"plate\"", "set = \"steel\""),
+                                      "region.2.set",
+                                      {"element set of the mesh", "\"steel\"", "\"plate\""});
+    test::expect_boundary_value_error(
+        test::replaced(text, "material = \"steel\"", "material = \"iron\""), "region.2.material",
+        {"[material.NAME]", "\"iron\""});
     // Elements left without a material, or given two.
-    expect_error(replaced(text, "[[region]]\nset = \"plate\"\nmaterial = \"steel\"\n", ""),
-                 "region", {"every element a material", "element 1", "\"plate\""});
-    expect_error(replaced(text, "set = \"plate\"", "set = \"soil.all\""), "region.2.set",
-                 {"sharing no element", "region 1"});
+    test::expect_boundary_value_error(
+        test::replaced(text, "[[region]]\nset = \"plate\"\nmaterial = \"steel\"\n", ""), "region",
+        {"every element a material", "element 1", "\"plate\""});
+    test::expect_boundary_value_error(test::replaced(text, "set = \"plate\"", "set = \"soil.all\""),
+                                      "region.2.set", {"sharing no element", "region 1"});
     // Exactly one of [mesh] file and [[body]].
-    expect_error(text + "\n[[body]]\nname = \"x\"\nmaterial = \"sand\"\norigin = [0.0, 0.0]\n"
-                        "size = [1.0, 1.0]\nelements = [1, 1]\n",
-                 "body", {"not both"});
-    expect_error(replaced(replaced(text, "[[region]]\nset = \"plate\"\nmaterial = \"steel\"\n", ""),
-                          "[[region]]\nset = \"soil\"\nmaterial = \"sand\"\n", ""),
-                 "region", {"missing", "[[region]]"});
-    expect_error(replaced(test::read_text(structured), "[material.sand]",
-                          "[[region]]\nset = \"soil\"\nmaterial = \"sand\"\n\n[material.sand]"),
-                 "region", {"mesh file"});
+    test::expect_boundary_value_error(
+        text + "\n[[body]]\nname = \"x\"\nmaterial = \"sand\"\norigin = [0.0, 0.0]\n"
+               "size = [1.0, 1.0]\nelements = [1, 1]\n",
+        "body", {"not both"});
+    test::expect_boundary_value_error(
+        test::replaced(
+            test::replaced(text, "[[region]]\nset = \"plate\"\nmaterial = \"steel\"\n", ""),
+            "[[region]]\nset = \"soil\"\nmaterial = \"sand\"\n", ""),
+        "region", {"missing", "[[region]]"});
+    test::expect_boundary_value_error(
+        test::replaced(test::read_text(structured), "[material.sand]",
+                       "[[region]]\nset = \"soil\"\nmaterial = \"sand\"\n\n[material.sand]"),
+        "region", {"mesh file"});
     // The dimension must be the file's.
-    expect_error(replaced(text, "dimension = 2", "dimension = 3"), "mesh.dimension",
-                 {"shear-box-2d.msh", "(2)"});
+    test::expect_boundary_value_error(test::replaced(text, "dimension = 2", "dimension = 3"),
+                                      "mesh.dimension", {"shear-box-2d.msh", "(2)"});
     // A missing or bad mesh file: the scene's key, the mesh file and its line.
     const std::string shipped = fs::absolute("scenes/meshes/shear-box-2d.msh").string();
-    expect_error(replaced(text, shipped, shipped + ".none"), "mesh.file",
-                 {shipped + ".none: cannot open"});
+    test::expect_boundary_value_error(test::replaced(text, shipped, shipped + ".none"), "mesh.file",
+                                      {shipped + ".none: cannot open"});
     const fs::path bad = test::fresh_dir("gmsh-bad") / "bad.msh";
     std::string mesh = test::read_text("scenes/meshes/shear-box-2d.msh");
-    std::ofstream(bad) << replaced(mesh, "2 2 3 1\n10 5 6 8 7", "2 2 2 1\n10 5 6 8");
+    std::ofstream(bad) << test::replaced(mesh, "2 2 3 1\n10 5 6 8 7", "2 2 2 1\n10 5 6 8");
     const std::string bad_line = std::to_string(
         1 +
         std::count(mesh.begin(), mesh.begin() + static_cast<long>(mesh.find("10 5 6 8 7")), '\n'));
-    expect_error(
-        replaced(text, fs::absolute("scenes/meshes/shear-box-2d.msh").string(), bad.string()),
+    test::expect_boundary_value_error(
+        test::replaced(text, fs::absolute("scenes/meshes/shear-box-2d.msh").string(), bad.string()),
         "mesh.file", {bad.string() + ":" + bad_line + ":", "3-node triangle"});
 }
 
