@@ -75,7 +75,7 @@ TEST(BoundaryValueScene, ShippedScenesAreRead) {
     for (const char* name :
          {"fe-simple-shear-cnl-2d", "fe-simple-shear-cnl-3d", "fe-simple-shear-cns-2d",
           "fe-simple-shear-stutz-2d", "fe-simple-shear-coulomb-2d", "fe-appendix-c-continuum-2d",
-          "fe-sliding-block-2d"}) {
+          "fe-sliding-block-2d", "fe-contact-patch-2d", "fe-rough-and-smooth-2d"}) {
         const std::string file = std::string("scenes/") + name + ".toml";
         const BoundaryValueScene s = test::parse_boundary_value(file);
         EXPECT_FALSE(s.stages.empty()) << name;
