@@ -1,5 +1,6 @@
 #include "fem/contact_pair.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -124,6 +125,7 @@ public:
             first_ = false;
         }
         traction_.assign(n, {});
+        new_increment();
         return changed;
     }
 
@@ -174,6 +176,7 @@ protected:
     virtual void refresh_jacobian() {}     // Jacobian columns of the last evaluate() if deferred
     virtual void start(const std::vector<Voigt6>& local_stress) = 0;
     virtual void add_state_means(std::size_t, double, ContactResultant&) const {}
+    virtual void new_increment() {}
 
     // Continuum stress at each slave point (Eq. 14) rotated into its engine frame (Eq. 15).
     void extrapolate(const ElementStresses& stresses) {
@@ -322,8 +325,7 @@ public:
             gather_gaps(du, points_, contact_col::t_N, contact_col::k_N, contact_col::dg1,
                         contact_col::dg2);
             for (std::size_t i = 0; i < kin_->n_points(); ++i) {
-                points_.input(contact_col::s_p1)[i] = local_stress_[i][1];
-                points_.input(contact_col::s_p2)[i] = local_stress_[i][2];
+                set_targets(i);
             }
         }
         // Deferred Jacobian: the residual needs only the base lanes; the Eq. 37 lanes run when
@@ -334,6 +336,12 @@ public:
             PhaseTimer timer(timers_.kernels);
             rep = engine_.update(points_, params_, defer_ ? base_only_ : spec_.options);
         }
+        while (!rep.ok() && relax_failed_points()) {
+            PhaseTimer timer(timers_.kernels);
+            count(rep);
+            ++counters_.relaxed_reruns;
+            rep = engine_.update(points_, params_, defer_ ? base_only_ : spec_.options);
+        }
         PhaseTimer timer(timers_.scatter);
         count(rep);
         if (!rep.ok()) {
@@ -342,9 +350,10 @@ public:
             const ContactKinematics& k = kin_->point(i);
             error = fmt::format(
                 "{} interface point(s) of contact pair '{}' failed in Algorithm 1, first point "
-                "{} at ({:.6g}, {:.6g}, {:.6g}): {} (residual {:.3e})",
+                "{} at ({:.6g}, {:.6g}, {:.6g}): {} (residual {:.3e}); {}",
                 rep.failed, spec_.name, i, k.x[0], k.x[1], k.x[2],
-                interface_failure::describe(rep.first_failed_cause), rep.first_failed_residual);
+                interface_failure::describe(rep.first_failed_cause), rep.first_failed_residual,
+                describe_point(i));
             return false;
         }
         for (std::size_t i = 0; i < kin_->n_points(); ++i) {
@@ -354,10 +363,84 @@ public:
         return true;
     }
 
-    void commit() override { points_.commit(); }
+    void commit() override {
+        points_.commit();
+        for (double l : relax_) {
+            counters_.relaxed_point_updates += l < 1.0 ? 1.0 : 0.0;
+        }
+    }
 
 protected:
     bool needs_stress() const override { return true; }
+
+    // Eqs. 19-20 ask the interface to carry the continuum's in-plane stresses next to the
+    // contact traction t_N. Where the two come from different places (a free end of the
+    // interface, a corner where Eq. 14 extrapolates a steep gradient) the combination can lie
+    // outside every state the interface model can reach, and Algorithm 1's Newton cannot meet
+    // it. Eq. 13 admits a jump of sigma_p between interface and continuum, so such a point
+    // takes in-plane targets between the continuum's and the contact's normal stress, the
+    // state of Stutz's normal-contact rule that shear alone limits: target = t_N + lambda
+    // (s_p - t_N), lambda halved per failure down to 1/8, then 0; doubled back each increment.
+    // Needs the point's t_N input of this evaluation.
+    void set_targets(std::size_t i) {
+        const double l = relax_.empty() ? 1.0 : relax_[i];
+        const double t_N = points_.input(contact_col::t_N)[i];
+        for (int c = 1; c <= 2; ++c) {
+            const double s_p = local_stress_[i][static_cast<std::size_t>(c)];
+            points_.input(contact_col::s_p1 + c - 1)[i] = l >= 1.0 ? s_p : t_N + l * (s_p - t_N);
+        }
+    }
+
+    // Lowers lambda of every point that failed in Algorithm 1 (novel formulation only); false
+    // when no failed point can be relaxed further (the failure is a true dead end).
+    bool relax_failed_points() {
+        if (spec_.options.interface.formulation != InterfaceFormulation::novel) {
+            return false;
+        }
+        relax_.resize(kin_->n_points(), 1.0);
+        bool any = false;
+        for (std::size_t i = 0; i < kin_->n_points(); ++i) {
+            if (points_.output(contact_col::status)[i] > -0.5 || relax_[i] <= 0.0) {
+                continue;
+            }
+            relax_[i] = relax_[i] > 0.2 ? 0.5 * relax_[i] : 0.0;
+            calm_.resize(relax_.size(), 0);
+            calm_[i] = 0;
+            set_targets(i);
+            any = true;
+        }
+        return any;
+    }
+
+    // A point that needed relaxing sits at a lasting feature (a free end, a corner): lambda
+    // grows back only after `calm_increments` attempts in a row without a failure there, since
+    // each return towards the inadmissible targets strains the interface laterally (ratchet).
+    void new_increment() override {
+        calm_.resize(relax_.size(), 0);
+        for (std::size_t i = 0; i < relax_.size(); ++i) {
+            if (relax_[i] >= 1.0 || ++calm_[i] < calm_increments) {
+                continue;
+            }
+            relax_[i] = relax_[i] > 0.0 ? std::min(1.0, 2.0 * relax_[i]) : 0.125;
+            calm_[i] = 0;
+        }
+    }
+    static constexpr int calm_increments = 50;
+
+    // The failed point's inputs and committed state, enough to replay it at point level.
+    std::string describe_point(std::size_t i) const {
+        constexpr int NS = M::n_state;
+        const auto in = [&](int c) { return points_.input(c)[i]; };
+        const auto st = [&](int c) { return points_.committed(c)[i]; };
+        return fmt::format(
+            "inputs t_N {:.6g} kPa, s_p1 {:.6g}, s_p2 {:.6g} kPa, dg_T ({:.6g}, {:.6g}) m; "
+            "committed interface stress [N, p1, p2, t1, t2] = [{:.6g}, {:.6g}, {:.6g}, {:.6g}, "
+            "{:.6g}] kPa, void ratio {:.6g}, eps_N {:.6g}, eps_p1 {:.6g}, eps_p2 {:.6g}",
+            in(contact_col::t_N), in(contact_col::s_p1), in(contact_col::s_p2),
+            in(contact_col::dg1), in(contact_col::dg2), st(0), st(1), st(2), st(3), st(4),
+            st(state_index::void_ratio), st(NS + contact_state::eps_n),
+            st(NS + contact_state::eps_p1), st(NS + contact_state::eps_p2));
+    }
 
     // The same update with the Jacobian lanes: the base lanes repeat the residual's
     // evaluation exactly (same inputs, lane arithmetic independent of the batch), the perturbed
@@ -421,8 +504,10 @@ protected:
 
 private:
     typename M::Params params_;
-    ContactOptions base_only_; // the spec's options without the Eq. 37 lanes
-    bool defer_ = false;       // the last evaluate() ran the base lanes only
+    ContactOptions base_only_;  // the spec's options without the Eq. 37 lanes
+    bool defer_ = false;        // the last evaluate() ran the base lanes only
+    std::vector<double> relax_; // per point: share lambda of the continuum's in-plane targets
+    std::vector<int> calm_;     // per point: increments since its last relaxation
     ContactPoints<M> points_;
     ContactEngine<M> engine_;
 };

@@ -77,6 +77,11 @@ struct ContactPairCounters {
     long failed_evaluations = 0;
     long band_clamped = 0;
     double dropped_columns = 0.0;
+    // Novel formulation: engine re-runs after a point failed with the continuum's in-plane
+    // stresses as targets, and committed point updates whose targets were relaxed (Eqs. 19-20
+    // held only in part: an admissible jump of sigma_p, Eq. 13).
+    long relaxed_reruns = 0;
+    double relaxed_point_updates = 0.0;
 };
 
 // Area-weighted means over the points in contact (committed state after commit()).

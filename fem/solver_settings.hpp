@@ -55,7 +55,18 @@ struct SolverSettings {
     // First guess of the free DOFs: the previous converged increment of the stage scaled to the
     // new increment's length (false: zero), the prescribed DOFs at their new values.
     bool extrapolate = true;
-    int max_cuts = 6;               // halvings of one nominal increment before failing
+    int max_cuts = 6; // halvings of one nominal increment before failing
+    // After a cut the increment grows back (doubling, never past the nominal step) once
+    // `growth_after` increments in a row converged at the smaller size.
+    int growth_after = 2;
+    // Backtracking line search: a Newton step whose residual norm is larger than the last is
+    // halved up to this many times (0: plain Newton). Needed at kinks of the response (the
+    // loading/unloading switch of the intergranular strain) where Newton falls into 2-cycles.
+    int max_line_search = 4;
+    // Accept an iterate whose relative residual is at most this and has stopped falling (no
+    // halving over the last 3 iterations): the floor set by the inner solves (Algorithm 1
+    // and the adaptive substeps converge to their own tolerances). Counted. 0: never.
+    double stagnation_tolerance = 1.0e-5;
     std::size_t element_grain = 64; // elements per task in the element loops
 };
 

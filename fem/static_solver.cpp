@@ -38,6 +38,17 @@ void parallel_chunks(std::size_t n, std::size_t grain, F&& body) {
         tbb::simple_partitioner());
 }
 
+// The last relative residuals of a Newton iteration, for a failure message.
+std::string residual_trace(const std::vector<double>& residuals) {
+    const std::size_t n = residuals.size();
+    const std::size_t from = n > 8 ? n - 8 : 0;
+    std::string out = from > 0 ? "... " : "";
+    for (std::size_t i = from; i < n; ++i) {
+        out += fmt::format("{}{:.1e}", i > from ? " " : "", residuals[i]);
+    }
+    return out;
+}
+
 } // namespace
 
 struct StaticSolver::SetData {
@@ -121,6 +132,8 @@ const SolverCounters& StaticSolver::counters() const {
     counters_.contact_subincrements = 0.0;
     counters_.contact_constitutive_evaluations = 0.0;
     counters_.contact_failures = 0;
+    counters_.contact_relaxed_reruns = 0;
+    counters_.contact_relaxed_point_updates = 0.0;
     for (const auto& c : contacts_) {
         const ContactPairCounters& k = c->counters();
         counters_.contact_pairings += c->kinematics().projection_counters().pairings;
@@ -130,6 +143,8 @@ const SolverCounters& StaticSolver::counters() const {
         counters_.contact_subincrements += k.subincrements;
         counters_.contact_constitutive_evaluations += k.constitutive_evaluations;
         counters_.contact_failures += k.failed_evaluations;
+        counters_.contact_relaxed_reruns += k.relaxed_reruns;
+        counters_.contact_relaxed_point_updates += k.relaxed_point_updates;
     }
     return counters_;
 }
@@ -570,7 +585,7 @@ bool StaticSolver::evaluate(double t, std::span<const double> increment, bool wi
 }
 
 bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& info,
-                                   std::string& error) {
+                                   std::string& error, const IncrementCallback& on_iteration) {
     if (!contacts_.empty()) {
         begin_contacts(false);
     }
@@ -590,12 +605,15 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
     const double tol_r = settings_.residual_tolerance;
     const double tol_u = settings_.displacement_tolerance;
     double last_correction = std::numeric_limits<double>::infinity();
+    if (!residual_pass(t_end, du_, error)) {
+        return false;
+    }
+    double rel = norm2(residual_) / reference_force_;
     for (int it = 0;; ++it) {
-        if (!residual_pass(t_end, du_, error)) {
-            return false;
-        }
-        const double rel = norm2(residual_) / reference_force_;
         info.residuals.push_back(rel);
+        if (on_iteration) {
+            on_iteration(info);
+        }
         if (!std::isfinite(rel)) {
             error = "the residual is not finite";
             return false;
@@ -603,10 +621,19 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
         if (rel <= 1.0e-2 * tol_r || (it > 0 && rel <= tol_r && last_correction <= tol_u)) {
             return true;
         }
+        // The noise floor of the inner solves: small and no longer falling.
+        const auto& r = info.residuals;
+        if (settings_.stagnation_tolerance > 0.0 && it >= 3 &&
+            rel <= settings_.stagnation_tolerance && rel > 0.5 * r[r.size() - 4]) {
+            info.stagnated = true;
+            ++counters_.stagnation_accepts;
+            return true;
+        }
         if (it == settings_.max_iterations) {
             error = fmt::format("Newton did not converge in {} iterations (relative residual "
-                                "{:.3e}, last relative correction {:.3e})",
-                                settings_.max_iterations, rel, last_correction);
+                                "{:.3e}, last relative correction {:.3e}; residuals {})",
+                                settings_.max_iterations, rel, last_correction,
+                                residual_trace(info.residuals));
             return false;
         }
         tangent_pass(du_);
@@ -618,27 +645,57 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
             }
         }
         ++counters_.newton_iterations;
-        for (std::size_t d = 0; d < du_.size(); ++d) {
-            const int eq = dofs_.equation[d];
-            if (eq >= 0) {
-                du_[d] += correction_[static_cast<std::size_t>(eq)];
+        // Backtracking line search on the residual norm: halve the step while the residual
+        // grows (a kink of the response sends full Newton steps into 2-cycles). A failed
+        // evaluation (a material or interface point) is also retried with half the step.
+        du_start_.assign(du_.begin(), du_.end());
+        double alpha = 1.0;
+        double rel_new = 0.0;
+        for (int ls = 0;; ++ls) {
+            for (std::size_t d = 0; d < du_.size(); ++d) {
+                const int eq = dofs_.equation[d];
+                du_[d] = eq >= 0 ? du_start_[d] + alpha * correction_[static_cast<std::size_t>(eq)]
+                                 : du_start_[d];
             }
+            const bool evaluated = residual_pass(t_end, du_, error);
+            rel_new = evaluated ? norm2(residual_) / reference_force_
+                                : std::numeric_limits<double>::infinity();
+            const bool worse = !(rel_new <= rel) && rel_new > tol_r;
+            if (!worse || ls == settings_.max_line_search) {
+                if (!evaluated) {
+                    return false;
+                }
+                break;
+            }
+            alpha *= 0.5;
+            ++info.line_search_steps;
+            ++counters_.line_search_steps;
         }
-        last_correction = norm2(correction_) / std::max(norm2(du_), 1.0e-300);
+        last_correction = alpha * norm2(correction_) / std::max(norm2(du_), 1.0e-300);
         info.corrections.push_back(last_correction);
+        rel = rel_new;
     }
 }
 
-StageResult StaticSolver::run_stage(const Stage& stage, const IncrementCallback& on_increment) {
+StageResult StaticSolver::run_stage(const Stage& stage, const IncrementCallback& on_increment,
+                                    const IncrementCallback& on_iteration) {
     begin_stage(stage);
     StageResult result;
     const int steps = std::max(1, stage.steps);
+    const int max_cuts = std::max(0, settings_.max_cuts);
     for (int k = 1; k <= steps; ++k) {
+        // Automatic increment control inside the nominal step [t_a, t_step]: the increment is
+        // halved on failure (up to max_cuts times) and doubled again after growth_after
+        // converged increments in a row, never past the step's end, so a hard stretch costs
+        // small increments only while it lasts.
         double t_a = double(k - 1) / steps;
-        // Pending ends of sub-increments with their cut depth, last = next to try.
-        std::vector<std::pair<double, int>> pending = {{double(k) / steps, 0}};
-        while (!pending.empty()) {
-            const auto [t_b, depth] = pending.back();
+        const double t_step = double(k) / steps;
+        int depth = 0;
+        int streak = 0;
+        while (true) {
+            const double h = 1.0 / (double(steps) * std::ldexp(1.0, depth));
+            const bool last = t_a + h >= t_step - 1.0e-12 * h;
+            const double t_b = last ? t_step : t_a + h;
             IncrementInfo info;
             info.stage = stage_count_;
             info.step = k;
@@ -646,7 +703,7 @@ StageResult StaticSolver::run_stage(const Stage& stage, const IncrementCallback&
             info.t_end = t_b;
             info.cut_depth = depth;
             std::string error;
-            if (solve_increment(t_a, t_b, info, error)) {
+            if (solve_increment(t_a, t_b, info, error, on_iteration)) {
                 for (auto& s : sets_) {
                     s->material->commit();
                 }
@@ -662,14 +719,27 @@ StageResult StaticSolver::run_stage(const Stage& stage, const IncrementCallback&
                 f_ext_committed_ = f_ext_;
                 ++counters_.increments;
                 ++result.increments;
+                counters_.worst_accepted_residual =
+                    std::max(counters_.worst_accepted_residual, info.residuals.back());
                 t_a = t_b;
-                pending.pop_back();
                 if (on_increment) {
                     on_increment(info);
                 }
+                if (last) {
+                    break;
+                }
+                // Grow back only to a size that divides the rest of the step evenly.
+                if (depth > 0 && ++streak >= settings_.growth_after) {
+                    const double rest = (t_step - t_a) * double(steps) * std::ldexp(1.0, depth);
+                    if (std::fmod(std::round(rest), 2.0) == 0.0) {
+                        --depth;
+                        streak = 0;
+                        ++counters_.increment_growths;
+                    }
+                }
                 continue;
             }
-            if (depth >= settings_.max_cuts) {
+            if (depth >= max_cuts) {
                 result.ok = false;
                 result.reason = fmt::format(
                     "stage {} ('{}'), step {} of {}, pseudo-time {:.6g} to {:.6g}: {} (after "
@@ -679,8 +749,8 @@ StageResult StaticSolver::run_stage(const Stage& stage, const IncrementCallback&
             }
             ++counters_.cuts;
             dt_last_ = 0.0; // the retry starts from zero: the extrapolation may have misled
-            pending.back().second = depth + 1;
-            pending.emplace_back(0.5 * (t_a + t_b), depth + 1);
+            ++depth;
+            streak = 0;
         }
     }
     return result;

@@ -56,7 +56,13 @@ struct SolverCounters {
     double contact_lanes = 0.0;         // Algorithm 1 runs incl. Jacobian lanes
     double contact_subincrements = 0.0; // Algorithm 1 sub-increments (base lanes)
     double contact_constitutive_evaluations = 0.0;
-    long contact_failures = 0; // engine updates with a failed point (the increment was cut)
+    long contact_failures = 0;   // engine updates with a failed point (the increment was cut)
+    long line_search_steps = 0;  // residual passes spent halving Newton steps
+    long stagnation_accepts = 0; // increments accepted at the inner solves' noise floor
+    double worst_accepted_residual = 0.0; // largest relative residual of an accepted increment
+    long increment_growths = 0;           // increments doubled back towards the nominal step
+    long contact_relaxed_reruns = 0;      // see ContactPairCounters
+    double contact_relaxed_point_updates = 0.0;
     LinearSolverCounters linear;
 };
 
@@ -80,6 +86,8 @@ struct IncrementInfo {
     double t_begin = 0.0;
     double t_end = 0.0;
     int cut_depth = 0;               // halvings of the nominal step for this increment
+    int line_search_steps = 0;       // residual passes spent halving Newton steps
+    bool stagnated = false;          // accepted at the inner solves' noise floor
     std::vector<double> residuals;   // relative residual at each evaluation
     std::vector<double> corrections; // relative correction of each Newton iteration
 };
@@ -98,7 +106,10 @@ public:
     ~StaticSolver();
 
     using IncrementCallback = std::function<void(const IncrementInfo&)>;
-    StageResult run_stage(const Stage& stage, const IncrementCallback& on_increment = {});
+    // on_increment after every converged increment; on_iteration after every residual
+    // evaluation of an increment attempt (progress of long increments).
+    StageResult run_stage(const Stage& stage, const IncrementCallback& on_increment = {},
+                          const IncrementCallback& on_iteration = {});
 
     // Committed results.
     const std::vector<double>& displacement() const { return u_; }
@@ -141,7 +152,8 @@ private:
         double stiffness = 0.0; // per node
     };
 
-    bool solve_increment(double t_begin, double t_end, IncrementInfo& info, std::string& error);
+    bool solve_increment(double t_begin, double t_end, IncrementInfo& info, std::string& error,
+                         const IncrementCallback& on_iteration);
     bool residual_pass(double t, std::span<const double> du, std::string& error);
     void tangent_pass(std::span<const double> du);
     void compute_strains(std::span<const double> du);
@@ -180,11 +192,12 @@ private:
     std::map<std::string, std::vector<double>> pressure_unit_;
 
     // Displacements and forces.
-    std::vector<double> u_;       // committed
-    std::vector<double> du_;      // trial increment
-    std::vector<double> du_last_; // last converged increment of the stage
-    double dt_last_ = 0.0;        // its pseudo-time length (0: none yet)
-    std::vector<double> f_int_;   // trial internal force, full
+    std::vector<double> u_;        // committed
+    std::vector<double> du_;       // trial increment
+    std::vector<double> du_last_;  // last converged increment of the stage
+    std::vector<double> du_start_; // the iterate a line search starts from
+    double dt_last_ = 0.0;         // its pseudo-time length (0: none yet)
+    std::vector<double> f_int_;    // trial internal force, full
     std::vector<double> f_int_committed_;
     std::vector<double> f_ext_;
     std::vector<double> f_ext_committed_;

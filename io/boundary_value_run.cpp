@@ -94,12 +94,22 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
                 probe.measure(*solver, row);
                 write_boundary_value_row(history, row);
                 out.iterations.push_back(row.newton_iterations);
-                line.update(steps_before + info.step, info.stage,
+                line.update(static_cast<double>(steps_before) + info.t_end * stage.steps,
+                            info.stage,
                             fmt::format("increment {}  Newton {}  residual {:.1e}", increment,
                                         row.newton_iterations, row.residual));
                 out.row_seconds += since(t1);
             };
-            const fem::StageResult r = solver->run_stage(stage, on_increment);
+            // A long increment (many Newton iterations, cuts) still moves the line.
+            const auto on_iteration = [&](const fem::IncrementInfo& info) {
+                line.update(
+                    static_cast<double>(steps_before) + info.t_begin * stage.steps, info.stage,
+                    fmt::format("increment {}  Newton {}  residual {:.1e}{}", increment + 1,
+                                info.residuals.size() - 1, info.residuals.back(),
+                                info.cut_depth > 0 ? fmt::format("  cut x{}", 1 << info.cut_depth)
+                                                   : std::string()));
+            };
+            const fem::StageResult r = solver->run_stage(stage, on_increment, on_iteration);
             if (!r.ok) {
                 out.ok = false;
                 out.reason = r.reason;
@@ -138,6 +148,9 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     k["constitutive_evaluations"] =
         c.constitutive_evaluations + rounded(c.contact_constitutive_evaluations);
     k["cuts"] = c.cuts;
+    k["increment_growths"] = c.increment_growths;
+    k["line_search_steps"] = c.line_search_steps;
+    k["stagnation_accepts"] = c.stagnation_accepts;
     k["material_evaluations"] = c.constitutive_evaluations;
     k["tangent_evaluations"] = c.tangent_evaluations;
     k["tangent_fallbacks"] = c.tangent_fallbacks;
@@ -150,6 +163,8 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
         k["contact_pairings"] = c.contact_pairings;
         k["contact_pattern_rebuilds"] = c.contact_pattern_rebuilds;
         k["contact_failures"] = c.contact_failures;
+        k["contact_relaxed_reruns"] = c.contact_relaxed_reruns;
+        k["contact_relaxed_point_updates"] = rounded(c.contact_relaxed_point_updates);
     }
     k["patterns_built"] = c.patterns_built;
     k["linear_symbolic_analyses"] = c.linear.symbolic_analyses;
@@ -178,6 +193,10 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
         mean /= static_cast<double>(run.iterations.size());
     }
     d["iterations_per_increment"] = {{"mean", mean}, {"max", max}};
+    // Equilibrium reached: the largest relative residual of an accepted increment (at most
+    // [solver] residual_tolerance unless an increment stopped at the inner solves' noise floor,
+    // counted as stagnation_accepts, at most stagnation_tolerance).
+    d["worst_accepted_residual"] = c.worst_accepted_residual;
     if (contact) {
         // One pair: "interface" as always; every pair (with its name) under "contacts".
         if (scene.contacts.size() == 1) {

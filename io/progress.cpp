@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <string>
+
 #include <fmt/format.h>
 
 namespace ifsim::io {
@@ -19,11 +21,11 @@ ProgressLine::ProgressLine(ProgressMode mode, long total_steps, int stages, std:
                (mode == ProgressMode::automatic && is_terminal(out))),
       total_(total_steps), stages_(stages), out_(out), start_(Clock::now()) {}
 
-void ProgressLine::update(long step, int stage) {
+void ProgressLine::update(double step, int stage) {
     update(step, stage, {});
 }
 
-void ProgressLine::update(long step, int stage, std::string_view note) {
+void ProgressLine::update(double step, int stage, std::string_view note) {
     if (!enabled_) {
         return;
     }
@@ -33,10 +35,15 @@ void ProgressLine::update(long step, int stage, std::string_view note) {
     }
     last_ = t;
     shown_ = true;
-    const double percent = total_ > 0 ? 100.0 * static_cast<double>(step) / total_ : 100.0;
+    const double fraction = total_ > 0 ? step / static_cast<double>(total_) : 1.0;
+    // Time left from the pace so far (shown once a percent is done).
+    const std::string left = fraction > 0.01 && fraction < 1.0
+                                 ? fmt::format("  ~{:.0f} s left", t * (1.0 - fraction) / fraction)
+                                 : std::string();
     // Trailing spaces wipe what a longer previous line left behind.
-    fmt::print(out_, "\rifsim: step {}/{} ({:.0f}%)  stage {}/{}  {:.1f} s{}{}   ", step, total_,
-               percent, stage, stages_, t, note.empty() ? "" : "  ", note);
+    fmt::print(out_, "\rifsim: step {}/{} ({:.0f}%)  stage {}/{}  {:.1f} s{}{}{}   ",
+               static_cast<long>(step), total_, 100.0 * fraction, stage, stages_, t, left,
+               note.empty() ? "" : "  ", note);
     std::fflush(out_);
 }
 

@@ -18,9 +18,10 @@ public:
     ProgressLine(const ProgressLine&) = delete;
     ProgressLine& operator=(const ProgressLine&) = delete;
 
-    void update(long step, int stage);
+    // step may be fractional (a step part-way done); the line shows the estimated time left.
+    void update(double step, int stage);
     // The same with a run-specific note after the time ("Newton 3, residual 1.2e-09").
-    void update(long step, int stage, std::string_view note);
+    void update(double step, int stage, std::string_view note);
     // Ends the line (newline) if one was shown.
     void finish();
 
