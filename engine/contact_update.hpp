@@ -156,16 +156,33 @@ public:
     }
 
 private:
-    // The change of the gap vector g = x(1) - x(2) (Eq. 7) in lane block k:
-    // slave +theta e_d -> +theta e_d, master +theta e_d -> -theta e_d; base and re-run: none.
-    static void block_gap_change(int k, int ndim, double theta, double dg[3]) {
-        dg[0] = dg[1] = dg[2] = 0.0;
+    // The perturbations of Eq. 37 are taken along the point's local axes (n, t1, t2) and turned
+    // into the global columns afterwards, so that each axis gets a size of its own: theta
+    // (Eq. 38) along the tangents, and along the normal at most 1 % of the normal traction
+    // through the penalty. theta k_N is 1.5 kPa for k_N = 1e8 kPa/m: near opening that moved
+    // the perturbed lane across t_N = 0 and its column was the secant to an open contact.
+    static double axis_theta(const ContactPoints<M>& cp, const ContactOptions& opt,
+                             std::size_t i, int axis) {
+        if (axis != 0) {
+            return opt.perturbation;
+        }
+        const double k_N = cp.input(contact_col::k_N)[i];
+        const double t_N = std::abs(cp.input(contact_col::t_N)[i]);
+        const double floor = opt.interface.open_threshold;
+        return k_N > 0.0 ? std::min(opt.perturbation, 0.01 * std::max(t_N, floor) / k_N)
+                         : opt.perturbation;
+    }
+
+    // Lane block k: the local axis it perturbs and the sign of the gap change (slave moved
+    // along the axis: +, master moved: -); -1 for the base and the re-run.
+    static int block_axis(int k, int ndim, double& sign) {
+        sign = 0.0;
         if (k == 0 || k > 2 * ndim) {
-            return;
+            return -1;
         }
         const bool slave = k <= ndim;
-        const int d = slave ? k - 1 : k - 1 - ndim;
-        dg[d] = slave ? theta : -theta;
+        sign = slave ? 1.0 : -1.0;
+        return slave ? k - 1 : k - 1 - ndim;
     }
 
     void gather(ContactPoints<M>& cp, const ContactOptions& opt, std::size_t P, int k, int ndim,
@@ -173,14 +190,13 @@ private:
         using namespace detail::lane_col;
         for (std::size_t i = b; i < e; ++i) {
             const std::size_t l = k * P + i;
-            double dg[3];
-            block_gap_change(k, ndim, opt.perturbation, dg);
-            double dgn = 0.0, dg_t1 = 0.0, dg_t2 = 0.0;
-            for (int d = 0; d < 3; ++d) {
-                dgn += dg[d] * cp.input(contact_col::n + d)[i];
-                dg_t1 += dg[d] * cp.input(contact_col::t1 + d)[i];
-                dg_t2 += dg[d] * cp.input(contact_col::t2 + d)[i];
+            double sign = 0.0;
+            const int axis = block_axis(k, ndim, sign);
+            double local[3] = {0.0, 0.0, 0.0}; // gap change along n, t1, t2
+            if (axis >= 0) {
+                local[axis] = sign * axis_theta(cp, opt, i, axis);
             }
+            const double dgn = local[0], dg_t1 = local[1], dg_t2 = local[2];
             // Normal: t_N = k_N g_N. Tangential (Eq. A13): master minus slave motion.
             lanes_.col(t_N)[l] =
                 cp.input(contact_col::t_N)[i] + cp.input(contact_col::k_N)[i] * dgn;
@@ -198,8 +214,8 @@ private:
 
     double lane_traction(std::size_t l, int comp) const {
         using namespace detail::lane_col;
-        if (lanes_.col(open)[l] > 0.5) {
-            return 0.0;
+        if (lanes_.col(open)[l] > 0.5) { // the penalty alone: continuous through opening
+            return comp == 0 ? std::min(0.0, lanes_.col(t_N)[l]) : 0.0;
         }
         return comp == 0 ? lanes_.col(t_N)[l] : lanes_.col(state + (comp == 1 ? 3 : 4))[l];
     }
@@ -230,15 +246,32 @@ private:
                 cp.output(contact_col::traction + comp)[i] = lane_traction(i, comp);
             }
             if (n_pert > 0) {
+                // Columns along the local axes, then turned into the global directions:
+                // d t / d u_d = sum over axes a of (d t / d u along a) (e_a)_d.
                 const bool ref_ok = lanes_.col(status)[ref * P + i] > -0.5;
+                double local[3][6] = {};
                 for (int k = 1; k <= n_pert; ++k) {
                     const bool usable = ref_ok && lanes_.col(status)[k * P + i] > -0.5;
+                    double sign = 0.0;
+                    const int axis = block_axis(k, ndim, sign);
+                    const double th = axis_theta(cp, opt, i, axis);
                     for (int comp = 0; comp < 3; ++comp) {
-                        cp.output(contact_col::jacobian + comp + 3 * (k - 1))[i] =
-                            usable ? (lane_traction(k * P + i, comp) -
-                                      lane_traction(ref * P + i, comp)) /
-                                         opt.perturbation
-                                   : 0.0;
+                        local[comp][k - 1] = usable ? (lane_traction(k * P + i, comp) -
+                                                       lane_traction(ref * P + i, comp)) /
+                                                          th
+                                                    : 0.0;
+                    }
+                }
+                const int axes[3] = {contact_col::n, contact_col::t1, contact_col::t2};
+                for (int side = 0; side < 2; ++side) {
+                    for (int d = 0; d < ndim; ++d) {
+                        for (int comp = 0; comp < 3; ++comp) {
+                            double v = 0.0;
+                            for (int a = 0; a < ndim; ++a) {
+                                v += local[comp][side * ndim + a] * cp.input(axes[a] + d)[i];
+                            }
+                            cp.output(contact_col::jacobian + comp + 3 * (side * ndim + d))[i] = v;
+                        }
                     }
                 }
             } else {
@@ -282,7 +315,7 @@ private:
                 dtau[a][b2] = open_lane ? 0.0 : cols[3 + b2][3 + a] * 0.5 * cg * cg / d_s;
             }
         }
-        const double k_N = open_lane ? 0.0 : cp.input(contact_col::k_N)[i];
+        const double k_N = cp.input(contact_col::k_N)[i]; // an open lane keeps the penalty
         for (int side = 0; side < 2; ++side) {
             const double sgn = side == 0 ? 1.0 : -1.0; // gap change per +u: slave +, master -
             for (int d = 0; d < ndim; ++d) {

@@ -661,7 +661,12 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
             rel_new = evaluated ? norm2(residual_) / reference_force_
                                 : std::numeric_limits<double>::infinity();
             const bool worse = !(rel_new <= rel) && rel_new > tol_r;
-            if (!worse || ls == settings_.max_line_search) {
+            // A failed evaluation may halve further: near a stress-free state the soil's
+            // tangent is almost singular and the full step lands far outside what the
+            // interface (or a material point) can follow.
+            const int limit = evaluated ? settings_.max_line_search
+                                        : std::max(settings_.max_line_search, 12);
+            if (!worse || ls >= limit) {
                 if (!evaluated) {
                     return false;
                 }
@@ -677,9 +682,40 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
     }
 }
 
+void StaticSolver::measure_initial_imbalance() {
+    if (!contacts_.empty()) {
+        begin_contacts(false);
+    }
+    std::fill(du_.begin(), du_.end(), 0.0);
+    for (std::size_t k = 0; k < dofs_.prescribed.size(); ++k) {
+        const auto d = static_cast<std::size_t>(dofs_.prescribed[k]);
+        du_[d] = u_stage_start_[d] - u_[d];
+    }
+    std::string error;
+    if (!residual_pass(0.0, du_, error)) {
+        return; // the first increment reports the failure
+    }
+    imbalance_.evaluated = true;
+    imbalance_.relative = norm2(residual_) / reference_force_;
+    double worst = -1.0;
+    for (std::size_t d = 0; d < du_.size(); ++d) {
+        const int eq = dofs_.equation[d];
+        const double r = eq >= 0 ? std::abs(f_ext_[d] - f_int_[d]) : 0.0;
+        if (r > worst) {
+            worst = r;
+            imbalance_.node = static_cast<int>(d) / mesh_.dim();
+            imbalance_.direction = static_cast<int>(d) % mesh_.dim();
+            imbalance_.force = f_ext_[d] - f_int_[d];
+        }
+    }
+}
+
 StageResult StaticSolver::run_stage(const Stage& stage, const IncrementCallback& on_increment,
                                     const IncrementCallback& on_iteration) {
     begin_stage(stage);
+    if (stage_count_ == 1) {
+        measure_initial_imbalance();
+    }
     StageResult result;
     const int steps = std::max(1, stage.steps);
     const int max_cuts = std::max(0, settings_.max_cuts);

@@ -92,6 +92,18 @@ struct IncrementInfo {
     std::vector<double> corrections; // relative correction of each Newton iteration
 };
 
+// The out-of-balance force of the initial state (stresses, loads and supports of the first
+// stage at its start, before any increment): an initial stress that the boundary conditions do
+// not hold (e.g. a lateral stress on a free side face) shows here, and the first increments
+// then spend themselves on finding equilibrium instead of on the load path.
+struct InitialImbalance {
+    bool evaluated = false;
+    double relative = 0.0; // ||R|| / F_ref
+    int node = -1;         // node and direction of the largest entry
+    int direction = -1;
+    double force = 0.0; // kN (per m in 2D)
+};
+
 struct StageResult {
     bool ok = true;
     std::string reason;
@@ -124,6 +136,7 @@ public:
     const Mesh& mesh() const { return mesh_; }
     const ElementGeometry& geometry() const { return geom_; }
     const SolverCounters& counters() const;
+    const InitialImbalance& initial_imbalance() const { return imbalance_; }
     SolverTimers timers() const; // the solver's phases plus the contact pairs'
 
     // Adds a contact pair on two face sets of the mesh (before the first stage). Throws
@@ -210,6 +223,9 @@ private:
     std::vector<double> contact_du_;
     std::vector<ContactTriplet> contact_K_;
     double contact_matrix_s_ = 0.0; // adding the contact tangent entries to the matrix
+
+    InitialImbalance imbalance_;
+    void measure_initial_imbalance();
 
     mutable SolverCounters counters_;
     SolverTimers timers_;

@@ -54,6 +54,34 @@ nlohmann::ordered_json pair_details(const BoundaryValueInterface& bi) {
     return j;
 }
 
+// Above this relative out-of-balance force the initial state is worth a warning.
+constexpr double imbalance_warning = 1.0e-6;
+
+// Once, when the first stage has measured it: an initial state that the supports and loads do
+// not hold is almost always a scene mistake (a lateral stress on a free face).
+void warn_initial_imbalance(const fem::StaticSolver& solver, ProgressLine& line, bool& warned) {
+    const fem::InitialImbalance& b = solver.initial_imbalance();
+    if (warned || !b.evaluated) {
+        return;
+    }
+    warned = true;
+    if (b.relative <= imbalance_warning || line.quiet()) {
+        return;
+    }
+    const char* axis[] = {"x", "y", "z"};
+    const auto& x = solver.mesh().coordinates;
+    const int D = solver.mesh().dim();
+    const auto n = static_cast<std::size_t>(b.node * D);
+    line.break_line();
+    fmt::print(stderr,
+               "ifsim: warning: the initial state is not in equilibrium with the first stage's "
+               "supports and loads (relative residual {:.2e}; largest at node {} ({:.6g}, "
+               "{:.6g}{}) along {}: {:.4g} kN). The first increments will move the body to "
+               "equilibrium: support or load the faces whose initial stress is unbalanced.\n",
+               b.relative, b.node, x[n], x[n + 1], D == 3 ? fmt::format(", {:.6g}", x[n + 2]) : "",
+               axis[b.direction], b.force);
+}
+
 } // namespace
 
 BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene,
@@ -79,6 +107,7 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
         }
         long steps_before = 0;
         long increment = 0;
+        bool warned = false;
         out.ok = true;
         for (std::size_t k = 0; k < scene.stages.size() && out.ok; ++k) {
             const fem::Stage& stage = scene.stages[k];
@@ -102,6 +131,7 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
             };
             // A long increment (many Newton iterations, cuts) still moves the line.
             const auto on_iteration = [&](const fem::IncrementInfo& info) {
+                warn_initial_imbalance(*solver, line, warned);
                 line.update(
                     static_cast<double>(steps_before) + info.t_begin * stage.steps, info.stage,
                     fmt::format("increment {}  Newton {}  residual {:.1e}{}", increment + 1,
@@ -124,6 +154,7 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
     line.finish();
     if (solver) {
         out.counters = solver->counters();
+        out.imbalance = solver->initial_imbalance();
         out.timers = solver->timers();
         out.equations = solver->dof_map().n_equations;
         out.setup_seconds = std::max(0.0, out.setup_seconds - out.timers.k0);
@@ -197,6 +228,12 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     // [solver] residual_tolerance unless an increment stopped at the inner solves' noise floor,
     // counted as stagnation_accepts, at most stagnation_tolerance).
     d["worst_accepted_residual"] = c.worst_accepted_residual;
+    if (run.imbalance.evaluated) {
+        d["initial_imbalance"] = {{"relative_residual", run.imbalance.relative},
+                                  {"node", run.imbalance.node},
+                                  {"direction", run.imbalance.direction},
+                                  {"force", run.imbalance.force}};
+    }
     if (contact) {
         // One pair: "interface" as always; every pair (with its name) under "contacts".
         if (scene.contacts.size() == 1) {

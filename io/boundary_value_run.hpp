@@ -28,6 +28,7 @@ struct BoundaryValueRunOutcome {
     long equations = 0;          // of the last stage's DOF map
     std::vector<int> iterations; // Newton iterations of each converged increment
     int nodes = 0, elements = 0;
+    fem::InitialImbalance imbalance; // of the initial state under the first stage
 };
 
 // Writes DIR/history.csv. Throws std::runtime_error only when history.csv cannot be written

@@ -19,6 +19,7 @@ constexpr std::string_view continuum_keys[] = {"model",
                                                "tolerance",
                                                "jacobian",
                                                "perturbation",
+                                               "open_threshold",
                                                "void_ratio",
                                                "intergranular_strain",
                                                "back_stress",
@@ -64,6 +65,7 @@ void read_continuum(const TableReader& t, InterfaceFormulationSpec& spec) {
                  : spec.jacobian == "full-perturbation" ? ContactJacobian::full_perturbation
                                                         : ContactJacobian::analytical;
     c.perturbation = t.number_or("perturbation", c.perturbation, Bounds::open(0.0, 1.0));
+    s.open_threshold = t.number_or("open_threshold", s.open_threshold, Bounds::positive());
 
     spec.stress_start = InterfaceStressStart::continuum;
     if (f == "stutz") {

@@ -19,7 +19,7 @@ bool is_terminal(std::FILE* f) {
 ProgressLine::ProgressLine(ProgressMode mode, long total_steps, int stages, std::FILE* out)
     : enabled_(mode == ProgressMode::always ||
                (mode == ProgressMode::automatic && is_terminal(out))),
-      total_(total_steps), stages_(stages), out_(out), start_(Clock::now()) {}
+      quiet_(mode == ProgressMode::never), total_(total_steps), stages_(stages), out_(out), start_(Clock::now()) {}
 
 void ProgressLine::update(double step, int stage) {
     update(step, stage, {});
@@ -45,6 +45,14 @@ void ProgressLine::update(double step, int stage, std::string_view note) {
                static_cast<long>(step), total_, 100.0 * fraction, stage, stages_, t, left,
                note.empty() ? "" : "  ", note);
     std::fflush(out_);
+}
+
+void ProgressLine::break_line() {
+    if (shown_) {
+        fmt::print(out_, "\n");
+        std::fflush(out_);
+        shown_ = false;
+    }
 }
 
 void ProgressLine::finish() {

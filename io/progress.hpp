@@ -26,6 +26,9 @@ public:
     void finish();
 
     bool enabled() const { return enabled_; }
+    bool quiet() const { return quiet_; } // --quiet: no warnings on the console either
+    // Ends a shown line (newline) so that a message can follow; the line goes on below it.
+    void break_line();
     bool shown() const { return shown_; }
 
     static constexpr double first_after_s = 1.0;
@@ -34,6 +37,7 @@ public:
 private:
     using Clock = std::chrono::steady_clock;
     bool enabled_;
+    bool quiet_;
     long total_;
     int stages_;
     std::FILE* out_;

@@ -155,10 +155,9 @@ TEST(BoundaryValueScene, BadInputNamesFileAndKey) {
                        "{ nodes = \"soil.top\", direction = \"x\" } ]\nequal = [ { nodes "
                        "= \"soil.top\", direction = \"y\" }, { nodes = \"soil.bottom\", "
                        "direction = \"x\" },\n          { nodes = \"soil.bottom\", "
-                       "direction = \"y\" } ]\npressure = [ { faces = \"soil.top\", from "
-                       "= 100.0, to = 100.0 } ]\n\n[[stage]]\nname = \"shear\"",
+                       "direction = \"y\" } ]\npressure",
                        "{ nodes = \"soil.top\", direction = \"x\" } ]\nequal = [ { nodes = "
-                       "\"soil.top\", direction = \"x\" } ]\n\n[[stage]]\nname = \"shear\""),
+                       "\"soil.top\", direction = \"x\" } ]\npressure"),
         "stage.1", "contradict");
 }
 

@@ -127,9 +127,11 @@ TEST(GmshScene, SetMeshFilePicksAnotherFile) {
 2.2 0 8
 $EndMeshFormat
 $PhysicalNames
-6
+8
 1 11 "soil.bottom"
+1 12 "soil.right"
 1 13 "soil.top"
+1 14 "soil.left"
 1 23 "plate.top"
 2 1 "soil"
 2 2 "plate"
@@ -149,7 +151,7 @@ $Nodes
 10 0.05 0.02 0
 $EndNodes
 $Elements
-9
+11
 1 1 2 11 1 1 9
 2 1 2 11 1 9 2
 3 1 2 13 3 4 10
@@ -159,6 +161,8 @@ $Elements
 7 3 2 1 1 9 2 4 10
 8 3 2 2 2 5 6 8 7
 9 3 2 4 2 5 6 8 7
+10 1 2 12 2 2 4
+11 1 2 14 4 3 1
 $EndElements
 )";
     const BoundaryValueScene s = test::parse_boundary_value(gmsh, {"mesh.file=" + mesh.string()});

@@ -102,6 +102,7 @@ TEST(InterfaceHardCases, ShearReversalInEveryIncrement) {
     for (const auto f : {InterfaceFormulation::novel, InterfaceFormulation::stutz}) {
         InterfaceSettings s;
         s.formulation = f;
+        s.open_threshold = 1.0e-3; // shear at 0.01 kPa below: below the default opening
         s.max_subincrement = 2.0e-5;
         HState st = start_state();
         const double e0 = st.y[6];
@@ -170,6 +171,7 @@ TEST(InterfaceHardCases, HugeTangentialIncrementInOneCall) {
 TEST(InterfaceHardCases, NearZeroNormalStress) {
     const auto mp = l4c(0.9);
     InterfaceSettings s;
+    s.open_threshold = 1.0e-3; // the kernel below the default 1 kPa at which contact opens
     for (const double t_N : {-0.01, -0.1}) {
         for (const auto f : {InterfaceFormulation::novel, InterfaceFormulation::stutz}) {
             s.formulation = f;
@@ -276,6 +278,7 @@ TEST(InterfaceHardCases, SanisandReversalsNearZeroStressAndHugeIncrement) {
     for (const auto f : {InterfaceFormulation::novel, InterfaceFormulation::stutz}) {
         InterfaceSettings s;
         s.formulation = f;
+        s.open_threshold = 1.0e-3; // shear at 0.01 kPa below: below the default opening
         s.max_subincrement = 2.0e-5;
         SState st;
         st.y = sanisand_state();
