@@ -161,8 +161,8 @@ private:
     // (Eq. 38) along the tangents, and along the normal at most 1 % of the normal traction
     // through the penalty. theta k_N is 1.5 kPa for k_N = 1e8 kPa/m: near opening that moved
     // the perturbed lane across t_N = 0 and its column was the secant to an open contact.
-    static double axis_theta(const ContactPoints<M>& cp, const ContactOptions& opt,
-                             std::size_t i, int axis) {
+    static double axis_theta(const ContactPoints<M>& cp, const ContactOptions& opt, std::size_t i,
+                             int axis) {
         if (axis != 0) {
             return opt.perturbation;
         }

@@ -415,6 +415,25 @@ protected:
     // A point that needed relaxing sits at a lasting feature (a free end, a corner): lambda
     // grows back only after `calm_increments` attempts in a row without a failure there, since
     // each return towards the inadmissible targets strains the interface laterally (ratchet).
+    double regather(const ElementStresses& stresses) override {
+        if (spec_.options.interface.formulation != InterfaceFormulation::novel) {
+            return 0.0;
+        }
+        const std::vector<Voigt6> before = local_stress_;
+        extrapolate(stresses);
+        double change = 0.0;
+        for (std::size_t i = 0; i < before.size(); ++i) {
+            if (!kin_->point(i).active) {
+                continue;
+            }
+            for (std::size_t c = 1; c <= 2; ++c) {
+                const double ref = std::max({std::abs(before[i][c]), 1.0});
+                change = std::max(change, std::abs(local_stress_[i][c] - before[i][c]) / ref);
+            }
+        }
+        return change;
+    }
+
     void new_increment() override {
         calm_.resize(relax_.size(), 0);
         for (std::size_t i = 0; i < relax_.size(); ++i) {

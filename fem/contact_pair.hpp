@@ -116,6 +116,10 @@ public:
     // Tangent entries of the last evaluate().
     virtual void add_tangent(std::vector<ContactTriplet>& K) = 0;
     virtual void commit() = 0;
+    // Implicit gather (novel formulation): the continuum stress extrapolated again from the
+    // given (trial) stresses replaces the in-plane targets of the next evaluate(); returns the
+    // largest change of a target relative to max(|s_p|, 1 kPa). 0 for pairs without targets.
+    virtual double regather(const ElementStresses&) { return 0.0; }
 
     virtual ContactResultant resultant() const = 0;
     const ContactPairTimers& timers() const { return timers_; }

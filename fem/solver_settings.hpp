@@ -67,6 +67,13 @@ struct SolverSettings {
     // halving over the last 3 iterations): the floor set by the inner solves (Algorithm 1
     // and the adaptive substeps converge to their own tolerances). Counted. 0: never.
     double stagnation_tolerance = 1.0e-5;
+    // Implicit gather of the novel interface's in-plane targets (Eqs. 14-16): after Newton
+    // converges, the targets are extrapolated again from the converged continuum stress and,
+    // while one moved by more than gather_tolerance (relative), Newton goes on with them, at
+    // most max_gathers times, else the increment is cut. 0 gathers: the explicit gather of
+    // the paper (targets from the last converged increment; error O(increment)).
+    double gather_tolerance = 1.0e-3;
+    int max_gathers = 10;
     std::size_t element_grain = 64; // elements per task in the element loops
 };
 

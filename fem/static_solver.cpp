@@ -168,13 +168,13 @@ void StaticSolver::add_contact(ContactPairSpec spec) {
     contacts_.push_back(make_contact_pair(mesh_, std::move(spec)));
 }
 
-void StaticSolver::element_stresses(int element, std::vector<Voigt6>& out) const {
+void StaticSolver::element_stresses(int element, std::vector<Voigt6>& out, bool trial) const {
     const auto e = static_cast<std::size_t>(element);
     const SetData& s = *sets_[static_cast<std::size_t>(set_of_element_.at(e))];
     out.resize(static_cast<std::size_t>(geom_.nip));
     for (int q = 0; q < geom_.nip; ++q) {
         const auto p = static_cast<std::size_t>(local_of_element_[e] * geom_.nip + q);
-        const std::vector<double> y = s.material->state(p);
+        const std::vector<double> y = trial ? s.material->trial_state(p) : s.material->state(p);
         for (std::size_t j = 0; j < 6; ++j) {
             out[static_cast<std::size_t>(q)][j] = y[j];
         }
@@ -618,15 +618,30 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
             error = "the residual is not finite";
             return false;
         }
-        if (rel <= 1.0e-2 * tol_r || (it > 0 && rel <= tol_r && last_correction <= tol_u)) {
-            return true;
-        }
-        // The noise floor of the inner solves: small and no longer falling.
+        // Converged, or at the noise floor of the inner solves (small and no longer falling).
         const auto& r = info.residuals;
-        if (settings_.stagnation_tolerance > 0.0 && it >= 3 &&
-            rel <= settings_.stagnation_tolerance && rel > 0.5 * r[r.size() - 4]) {
-            info.stagnated = true;
-            ++counters_.stagnation_accepts;
+        const bool converged =
+            rel <= 1.0e-2 * tol_r || (it > 0 && rel <= tol_r && last_correction <= tol_u);
+        const bool stagnated = !converged && settings_.stagnation_tolerance > 0.0 &&
+                               r.size() >= 4 && rel <= settings_.stagnation_tolerance &&
+                               rel > 0.5 * r[r.size() - 4];
+        if (converged || stagnated) {
+            if (!targets_settled(info, error)) {
+                if (!error.empty()) {
+                    return false;
+                }
+                // New targets: the residual of the same displacements with them.
+                if (!residual_pass(t_end, du_, error)) {
+                    return false;
+                }
+                rel = norm2(residual_) / reference_force_;
+                last_correction = std::numeric_limits<double>::infinity();
+                continue;
+            }
+            if (stagnated) {
+                info.stagnated = true;
+                ++counters_.stagnation_accepts;
+            }
             return true;
         }
         if (it == settings_.max_iterations) {
@@ -664,8 +679,8 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
             // A failed evaluation may halve further: near a stress-free state the soil's
             // tangent is almost singular and the full step lands far outside what the
             // interface (or a material point) can follow.
-            const int limit = evaluated ? settings_.max_line_search
-                                        : std::max(settings_.max_line_search, 12);
+            const int limit =
+                evaluated ? settings_.max_line_search : std::max(settings_.max_line_search, 12);
             if (!worse || ls >= limit) {
                 if (!evaluated) {
                     return false;
@@ -680,6 +695,33 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
         info.corrections.push_back(last_correction);
         rel = rel_new;
     }
+}
+
+bool StaticSolver::targets_settled(IncrementInfo& info, std::string& error) {
+    if (contacts_.empty() || settings_.max_gathers <= 0) {
+        return true;
+    }
+    const ElementStresses trial = [this](int e, std::vector<Voigt6>& out) {
+        element_stresses(e, out, true);
+    };
+    double change = 0.0;
+    for (auto& c : contacts_) {
+        change = std::max(change, c->regather(trial));
+    }
+    info.gather_change = change;
+    if (change <= settings_.gather_tolerance) {
+        counters_.worst_gather_change = std::max(counters_.worst_gather_change, change);
+        return true;
+    }
+    if (info.gathers >= settings_.max_gathers) {
+        error = fmt::format("the in-plane stresses gathered from the continuum (Eqs. 14-16) did "
+                            "not settle in {} gathers (last change {:.2e} of their size)",
+                            settings_.max_gathers, change);
+        return false;
+    }
+    ++info.gathers;
+    ++counters_.gathers;
+    return false;
 }
 
 void StaticSolver::measure_initial_imbalance() {

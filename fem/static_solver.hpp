@@ -61,6 +61,8 @@ struct SolverCounters {
     long stagnation_accepts = 0; // increments accepted at the inner solves' noise floor
     double worst_accepted_residual = 0.0; // largest relative residual of an accepted increment
     long increment_growths = 0;           // increments doubled back towards the nominal step
+    long gathers = 0;                     // re-gathers of the in-plane targets (implicit gather)
+    double worst_gather_change = 0.0;     // largest target change left in an accepted increment
     long contact_relaxed_reruns = 0;      // see ContactPairCounters
     double contact_relaxed_point_updates = 0.0;
     LinearSolverCounters linear;
@@ -88,6 +90,8 @@ struct IncrementInfo {
     int cut_depth = 0;               // halvings of the nominal step for this increment
     int line_search_steps = 0;       // residual passes spent halving Newton steps
     bool stagnated = false;          // accepted at the inner solves' noise floor
+    int gathers = 0;                 // re-gathers of the in-plane targets
+    double gather_change = 0.0;      // the last re-gather's largest relative target change
     std::vector<double> residuals;   // relative residual at each evaluation
     std::vector<double> corrections; // relative correction of each Newton iteration
 };
@@ -176,7 +180,9 @@ private:
     // Pairs every contact at the committed configuration and gathers its stresses; rebuilds
     // the sparse pattern when the stage's DOF map or a pairing changed.
     void begin_contacts(bool dofs_changed);
-    void element_stresses(int element, std::vector<Voigt6>& out) const;
+    void element_stresses(int element, std::vector<Voigt6>& out, bool trial = false) const;
+    // After Newton converged: re-gathers the in-plane targets; true when they settled.
+    bool targets_settled(IncrementInfo& info, std::string& error);
     void apply_k0();
     void hourglass_stiffness();
     template <int D>

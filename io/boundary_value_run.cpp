@@ -182,6 +182,7 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     k["increment_growths"] = c.increment_growths;
     k["line_search_steps"] = c.line_search_steps;
     k["stagnation_accepts"] = c.stagnation_accepts;
+    k["gathers"] = c.gathers;
     k["material_evaluations"] = c.constitutive_evaluations;
     k["tangent_evaluations"] = c.tangent_evaluations;
     k["tangent_fallbacks"] = c.tangent_fallbacks;
@@ -228,6 +229,9 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     // [solver] residual_tolerance unless an increment stopped at the inner solves' noise floor,
     // counted as stagnation_accepts, at most stagnation_tolerance).
     d["worst_accepted_residual"] = c.worst_accepted_residual;
+    // Implicit gather: the largest change of an in-plane target at the last gather of an
+    // accepted increment, relative to its size (at most [solver] gather_tolerance).
+    d["worst_gather_change"] = c.worst_gather_change;
     if (run.imbalance.evaluated) {
         d["initial_imbalance"] = {{"relative_residual", run.imbalance.relative},
                                   {"node", run.imbalance.node},

@@ -19,13 +19,21 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
     }
     const TableReader t = root.table("solver");
     t.allow_only({"residual_tolerance", "displacement_tolerance", "max_iterations", "max_cuts",
-                  "linear_solver", "tangent", "extrapolate"});
+                  "growth_after", "max_line_search", "stagnation_tolerance", "gather_tolerance",
+                  "max_gathers", "linear_solver", "tangent", "extrapolate"});
     s.residual_tolerance =
         t.number_or("residual_tolerance", s.residual_tolerance, Bounds::open(0.0, 1.0));
     s.displacement_tolerance =
         t.number_or("displacement_tolerance", s.displacement_tolerance, Bounds::open(0.0, 1.0));
     s.max_iterations = static_cast<int>(t.integer_or("max_iterations", s.max_iterations, 1, 1000));
     s.max_cuts = static_cast<int>(t.integer_or("max_cuts", s.max_cuts, 0, 30));
+    s.growth_after = static_cast<int>(t.integer_or("growth_after", s.growth_after, 1, 1000));
+    s.max_line_search = static_cast<int>(t.integer_or("max_line_search", s.max_line_search, 0, 30));
+    s.stagnation_tolerance =
+        t.number_or("stagnation_tolerance", s.stagnation_tolerance, Bounds::closed_open(0.0, 1.0));
+    s.gather_tolerance =
+        t.number_or("gather_tolerance", s.gather_tolerance, Bounds::open(0.0, 1.0));
+    s.max_gathers = static_cast<int>(t.integer_or("max_gathers", s.max_gathers, 0, 1000));
     scene.linear_solver = t.choice_or("linear_solver", "umfpack", {"umfpack", "klu"});
     s.linear_solver = scene.linear_solver == "umfpack" ? fem::LinearSolverKind::umfpack
                                                        : fem::LinearSolverKind::klu;

@@ -19,7 +19,8 @@ bool is_terminal(std::FILE* f) {
 ProgressLine::ProgressLine(ProgressMode mode, long total_steps, int stages, std::FILE* out)
     : enabled_(mode == ProgressMode::always ||
                (mode == ProgressMode::automatic && is_terminal(out))),
-      quiet_(mode == ProgressMode::never), total_(total_steps), stages_(stages), out_(out), start_(Clock::now()) {}
+      quiet_(mode == ProgressMode::never), total_(total_steps), stages_(stages), out_(out),
+      start_(Clock::now()) {}
 
 void ProgressLine::update(double step, int stage) {
     update(step, stage, {});

@@ -31,8 +31,9 @@ struct ShearBoxOptions {
     double normal_penalty = 1.0e8;
     int soil_elements = 1; // per horizontal axis (the §5 box: 1)
     int plate_elements = 7;
-    int max_iterations = 20;                      // global Newton
-    std::function<void(ContactPairSpec&)> adjust; // last changes to the contact pair
+    int max_iterations = 20;                        // global Newton
+    int max_gathers = SolverSettings{}.max_gathers; // 0: explicit gather (the paper's)
+    std::function<void(ContactPairSpec&)> adjust;   // last changes to the contact pair
 };
 
 struct ShearBoxRun {
@@ -94,6 +95,7 @@ inline ShearBoxRun run_shear_box(const ShearBoxOptions& o) {
 
     SolverSettings settings;
     settings.max_iterations = o.max_iterations;
+    settings.max_gathers = o.max_gathers;
     StaticSolver solver(mesh, {plate, soil}, settings);
     ContactPairSpec c;
     c.slave_faces = "soil.bottom";
