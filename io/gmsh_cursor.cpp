@@ -74,6 +74,17 @@ double GmshCursor::real(std::string_view what) {
     return v;
 }
 
+void GmshCursor::skip_real(std::string_view what) {
+    const std::string_view t = token(what);
+    double v = 0.0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    const bool number = ec == std::errc() || ec == std::errc::result_out_of_range;
+    if (!number || end != t.data() + t.size()) {
+        fail(
+            fmt::format("expected {} (a number) in the {} section, found '{}'", what, section_, t));
+    }
+}
+
 std::string GmshCursor::quoted(std::string_view what) {
     skip_space();
     token_line_ = line_;

@@ -24,6 +24,9 @@ public:
     std::string_view token(std::string_view what);
     long long integer(std::string_view what, long long lo, long long hi);
     double real(std::string_view what);
+    // A number whose value is not used (entity bounding boxes): Gmsh writes +-DBL_MAX to 16
+    // digits for entities without geometry, which rounds past the largest double.
+    void skip_real(std::string_view what);
     // A double-quoted string on one line ("soil zone").
     std::string quoted(std::string_view what);
     // The section's closing token "$End<name>"; throws naming what was found instead.

@@ -40,7 +40,7 @@ void Msh41Reader::read_entities(GmshCursor& c) {
         for (long long i = 0; i < counts[dim]; ++i) {
             const int tag = static_cast<int>(c.integer("an entity tag", 1, max_count));
             for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) {
-                c.real(dim == 0 ? "a point coordinate" : "a bounding box coordinate");
+                c.skip_real(dim == 0 ? "a point coordinate" : "a bounding box coordinate");
             }
             std::vector<int>& groups = physicals_[{dim, tag}];
             const long long n = c.integer("the number of physical tags", 0, max_count);

@@ -305,6 +305,18 @@ TEST(GmshReader, MissingFileIsAnError) {
     }
 }
 
+// Gmsh writes the bounding box of an entity without geometry as +-DBL_MAX to 16 digits, which
+// rounds past the largest double; the reader does not use bounding boxes and takes them.
+TEST(GmshReader, UnboundedEntityBoundingBoxesAreRead) {
+    const std::string text = replaced(two_quads_41, "1 0 0 0 1 0 0 1 11 0",
+                                      "1 -1.797693134862316e+308 0 0 1.797693134862316e+308 0 0 "
+                                      "1 11 0");
+    const GmshMesh g = read_gmsh_mesh(write_msh(text));
+    EXPECT_EQ(g.mesh.n_elements(), 2);
+    expect_mesh_error(replaced(two_quads_41, "1 0 0 0 1 0 0 1 11 0", "1 x 0 0 1 0 0 1 11 0"), 16,
+                      "bounding box");
+}
+
 TEST(GmshReader, TruncatedSectionNamesFileAndLine) {
     // The second node block is missing.
     const std::string cut = replaced(two_quads_41, "1 3 1 1\n99\n5 5 0 0.5\n", "");
