@@ -214,8 +214,18 @@ private:
 
     double lane_traction(std::size_t l, int comp) const {
         using namespace detail::lane_col;
-        if (lanes_.col(open)[l] > 0.5) { // the penalty alone: continuous through opening
-            return comp == 0 ? std::min(0.0, lanes_.col(t_N)[l]) : 0.0;
+        if (lanes_.col(open)[l] > 0.5) {
+            // Open (t_N above -open_threshold): the penalty's normal traction, and the kept
+            // state's shear scaled with t_N / sigma_N (its stress ratio), so that the traction
+            // fades to zero with t_N and meets the closed branch near the threshold instead of
+            // jumping (a jump makes the global Newton chatter between open and closed).
+            const double tn = std::min(0.0, lanes_.col(t_N)[l]);
+            if (comp == 0) {
+                return tn;
+            }
+            const double sn = lanes_.col(state + 0)[l];
+            const double ratio = sn < 0.0 ? std::clamp(tn / sn, 0.0, 1.0) : 0.0;
+            return ratio * lanes_.col(state + (comp == 1 ? 3 : 4))[l];
         }
         return comp == 0 ? lanes_.col(t_N)[l] : lanes_.col(state + (comp == 1 ? 3 : 4))[l];
     }

@@ -524,7 +524,14 @@ bool StaticSolver::residual_pass(double t, std::span<const double> du, std::stri
             residual_[static_cast<std::size_t>(eq)] += f_ext_[d] - f_int_[d];
         }
     }
-    reference_force_ = std::max({norm2(f_ext_), norm2(f_int_), settings_.reference_force_floor});
+    // The force level of the run: this state's, or the mean over the converged increments
+    // (time-averaged, as Abaqus does), so that a body unloaded towards zero stress is not
+    // held to a residual relative to its vanishing forces.
+    const double averaged = committed_references_ > 0
+                                ? reference_sum_ / static_cast<double>(committed_references_)
+                                : 0.0;
+    reference_force_ =
+        std::max({norm2(f_ext_), norm2(f_int_), averaged, settings_.reference_force_floor});
     return true;
 }
 
@@ -792,6 +799,8 @@ StageResult StaticSolver::run_stage(const Stage& stage, const IncrementCallback&
                     u_[d] += du_[d];
                 }
                 f_int_committed_ = f_int_;
+                reference_sum_ += std::max(norm2(f_ext_), norm2(f_int_));
+                ++committed_references_;
                 du_last_ = du_;
                 dt_last_ = t_b - t_a;
                 f_ext_committed_ = f_ext_;

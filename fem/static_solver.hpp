@@ -223,6 +223,8 @@ private:
     std::vector<double> residual_;   // reduced
     std::vector<double> correction_; // reduced
     double reference_force_ = 0.0;
+    double reference_sum_ = 0.0; // sum of the converged increments' force levels
+    long committed_references_ = 0;
 
     // Contact pairs and their scratch.
     std::vector<std::unique_ptr<ContactPair>> contacts_;
