@@ -64,6 +64,15 @@ PointFrame engine_frame(const ContactKinematics& k, const Vec3& direction, int d
     return f;
 }
 
+// sin(kappa phi_c) of an interface model (paper Eqs. 30, 33).
+double interface_friction_sine(const HypoplasticityParams& p) {
+    return std::sin(p.roughness * p.phi_c);
+}
+double interface_friction_sine(const SanisandParams& p) {
+    const double phi_c = std::asin(3.0 * p.M_c / (6.0 + p.M_c)); // M_c = 6 sin / (3 - sin)
+    return std::sin(p.roughness * phi_c);
+}
+
 // Slave integration points: 2-point Gauss per edge (2D), 2x2 per face (3D).
 std::size_t slave_point_count(const Mesh& mesh, const ContactPairSpec& spec) {
     return (mesh.dim() == 2 ? 2 : 4) * mesh.face_set(spec.slave_faces).size();
@@ -314,6 +323,7 @@ public:
                 fmt::format("contact pair '{}': no initial interface state", spec_.name));
         }
         spec_.options.interface.ndim = dim_;
+        k_lo_ = 1.0 - interface_friction_sine(params_);
         base_only_ = spec_.options;
         base_only_.jacobian = ContactJacobian::analytical;
     }
@@ -382,11 +392,21 @@ protected:
     // state of Stutz's normal-contact rule that shear alone limits: target = t_N + lambda
     // (s_p - t_N), lambda halved per failure down to 1/8, then 0; doubled back each increment.
     // Needs the point's t_N input of this evaluation.
+    //
+    // Before that, every target is held inside the at-rest range of the interface's friction
+    // angle, K_lo t_N ... t_N / K_lo with K_lo = 1 - sin(kappa phi_c) (Jaky): at a free corner
+    // the extrapolated continuum stress falls far below t_N (K = 0.2 seen), and a band that
+    // follows it sits on its limit surface, where every sub-increment of shear strains it
+    // further sideways (eps_p1 -> +100 %, eps_N -> -95 %: band collapse). Inside the range the
+    // targets are the continuum's, as Eqs. 19-20 state (the shear box keeps 0.5 ... 0.8).
     void set_targets(std::size_t i) {
         const double l = relax_.empty() ? 1.0 : relax_[i];
         const double t_N = points_.input(contact_col::t_N)[i];
         for (int c = 1; c <= 2; ++c) {
-            const double s_p = local_stress_[i][static_cast<std::size_t>(c)];
+            double s_p = local_stress_[i][static_cast<std::size_t>(c)];
+            if (t_N < 0.0) {
+                s_p = std::clamp(s_p, t_N / k_lo_, k_lo_ * t_N);
+            }
             points_.input(contact_col::s_p1 + c - 1)[i] = l >= 1.0 ? s_p : t_N + l * (s_p - t_N);
         }
     }
@@ -527,6 +547,7 @@ private:
     bool defer_ = false;        // the last evaluate() ran the base lanes only
     std::vector<double> relax_; // per point: share lambda of the continuum's in-plane targets
     std::vector<int> calm_;     // per point: increments since its last relaxation
+    double k_lo_ = 0.5;         // 1 - sin(kappa phi_c): at-rest bounds of the in-plane targets
     ContactPoints<M> points_;
     ContactEngine<M> engine_;
 };
