@@ -33,43 +33,9 @@ int run(std::vector<std::string> args) {
     return test::run_cli_captured(std::move(args)).code;
 }
 
-struct History {
-    std::vector<std::string> names;
-    std::vector<std::map<std::string, std::string>> rows;
-    double number(std::size_t row, const std::string& c) const {
-        return std::stod(rows[row].at(c));
-    }
-};
-
-History read_history(const fs::path& dir) {
-    std::istringstream in(test::read_text(dir / "history.csv"));
-    History h;
-    std::string line;
-    std::getline(in, line);
-    std::istringstream hs(line);
-    for (std::string n; std::getline(hs, n, ',');) {
-        h.names.push_back(n);
-    }
-    while (std::getline(in, line)) {
-        std::map<std::string, std::string> row;
-        std::size_t k = 0, start = 0;
-        for (;; ++k) {
-            const std::size_t comma = line.find(',', start);
-            row[h.names.at(k)] = line.substr(start, comma - start);
-            if (comma == std::string::npos) {
-                break;
-            }
-            start = comma + 1;
-        }
-        EXPECT_EQ(k + 1, h.names.size()) << line;
-        h.rows.push_back(row);
-    }
-    return h;
-}
-
-nlohmann::json summary(const fs::path& dir) {
-    return nlohmann::json::parse(test::read_text(dir / "summary.json"));
-}
+using test::History;
+using test::read_history;
+using test::summary;
 
 TEST(BoundaryValueScene, ShippedScenesAreRead) {
     for (const char* name :
