@@ -139,8 +139,14 @@ def main():
     ap.add_argument("--out", default=str(ROOT / "out" / "fe-meshes"))
     ap.add_argument("--quick", action="store_true", help="the smaller meshes only")
     ap.add_argument("--threads", type=int, default=0, help="threads per run (0: all)")
+    ap.add_argument("--plot-only", action="store_true",
+                    help="redraw the plot from OUT/fe-meshes.csv and the runs (no runs)")
     a = ap.parse_args()
-    out = Path(a.out)
+    out = Path(a.out).resolve()  # mesh paths in the scenes are taken relative to the scene
+    if a.plot_only:
+        with open(out / "fe-meshes.csv") as f:
+            plot(out, list(csv.DictReader(f)))
+        return 0
     (out / "runs").mkdir(parents=True, exist_ok=True)
     msh_dir = out / "meshes"
     make_meshes(msh_dir)
@@ -157,6 +163,11 @@ def main():
         t0 = time.time()
         proc = subprocess.run(cmd, capture_output=True, text=True)
         wall = time.time() - t0
+        if not (run_dir / "history.csv").exists():  # refused before it ran (scene error)
+            print(f"[{k}/{len(todo)}] {name}: not run: {proc.stderr.strip()}", flush=True)
+            rows.append({"case": name, "group": group, "status": "error",
+                         "reason": proc.stderr.strip()[:160]})
+            continue
         summary = json.loads((run_dir / "summary.json").read_text())
         hist = read_history(run_dir / "history.csv")
         shear = [r for r in hist if int(r["stage"]) >= 2]
@@ -184,7 +195,10 @@ def main():
         print(f"[{k}/{len(todo)}] {name}: {row['status']} in {wall:.1f} s, peak "
               f"{row['peak_t_t1']} kPa, final {row['final_t_t1']} kPa"
               + ("" if row["status"] == "ok" else f" ({row['reason']})"), flush=True)
-    keys = list(rows[0].keys())
+    keys = max((list(r.keys()) for r in rows), key=len)
+    for r in rows:
+        for k2 in keys:
+            r.setdefault(k2, None)
     with open(out / "fe-meshes.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=keys)
         w.writeheader()
@@ -210,7 +224,8 @@ def plot(out, rows):
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError:
-        print("study: matplotlib missing, no plot")
+        print("study: matplotlib missing, no plot (Debian's python3-matplotlib: run this script "
+              "with /usr/bin/python3, or again with --plot-only)")
         return
     fig, ax = plt.subplots(2, 2, figsize=(11, 7.5), sharex=True)
     for col, group in enumerate(["2d-novel", "3d-novel"]):
