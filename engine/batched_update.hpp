@@ -9,11 +9,8 @@
 #include <limits>
 #include <vector>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
-
 #include "engine/material_points.hpp"
+#include "engine/parallel_chunks.hpp"
 #include "kernels/material_update.hpp"
 
 namespace ifsim {
@@ -248,25 +245,17 @@ UpdateReport batched_update(MaterialPoints<M>& mp, const typename M::Params& par
     const std::size_t P = mp.padded();
     const std::size_t lanes = simd::lanes;
     const std::size_t chunk = ((opt.chunk_points + lanes - 1) / lanes) * lanes;
-    const std::size_t n_chunks = (P + chunk - 1) / chunk;
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, n_chunks, 1),
-        [&](const tbb::blocked_range<std::size_t>& r) {
-            for (std::size_t c = r.begin(); c != r.end(); ++c) {
-                const std::size_t b = c * chunk;
-                const std::size_t e = b + chunk < P ? b + chunk : P;
-                if (opt.simd) {
-                    if constexpr (M::heun_stepper) {
-                        detail::update_range_refill<M>(mp, params, opt, b, e);
-                    } else {
-                        detail::update_range<M, simd::batch>(mp, params, opt, b, e);
-                    }
-                } else {
-                    detail::update_range<M, double>(mp, params, opt, b, e);
-                }
+    for_chunks(P, chunk, [&](std::size_t b, std::size_t e) {
+        if (opt.simd) {
+            if constexpr (M::heun_stepper) {
+                detail::update_range_refill<M>(mp, params, opt, b, e);
+            } else {
+                detail::update_range<M, simd::batch>(mp, params, opt, b, e);
             }
-        },
-        tbb::simple_partitioner());
+        } else {
+            detail::update_range<M, double>(mp, params, opt, b, e);
+        }
+    });
 
     // Serial reduction in point order: deterministic for any thread count.
     UpdateReport rep;

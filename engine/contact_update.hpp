@@ -25,12 +25,9 @@
 #include <limits>
 #include <vector>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
-
 #include "engine/contact_lanes.hpp"
 #include "engine/contact_points.hpp"
+#include "engine/parallel_chunks.hpp"
 #include "kernels/interface_algorithm1.hpp"
 
 namespace ifsim {
@@ -91,7 +88,6 @@ public:
         }
         const std::size_t chunk =
             ((opt.chunk_points + simd::lanes - 1) / simd::lanes) * simd::lanes;
-        const std::size_t n_chunks = (P + chunk - 1) / chunk;
 
         if (order_.size() != P * blocks) {
             order_.assign(P * blocks, detail::LaneKey{});
@@ -104,33 +100,25 @@ public:
                 detail::run_lanes_scalar<M>(mp, opt.interface, lanes_, {keys, n});
             }
         };
-        tbb::parallel_for(
-            tbb::blocked_range<std::size_t>(0, n_chunks, 1),
-            [&](const tbb::blocked_range<std::size_t>& r) {
-                for (std::size_t c = r.begin(); c != r.end(); ++c) {
-                    const std::size_t b = c * chunk;
-                    const std::size_t e = b + chunk < P ? b + chunk : P;
-                    const std::size_t m = e - b;
-                    // The chunk's lanes in order_[b blocks, e blocks): base lanes first (the
-                    // perturbed ones take their sub-increment counts), then every perturbed
-                    // lane of the chunk as one queue, so lanes of equal work from different
-                    // blocks share batches.
-                    detail::LaneKey* keys = order_.data() + b * blocks;
-                    for (int k = 0; k < blocks; ++k) {
-                        for (std::size_t i = b; i < e; ++i) {
-                            keys[k * m + (i - b)].lane = k * P + i;
-                        }
-                    }
-                    gather(cp, opt, P, 0, ndim, b, e);
-                    run(keys, m);
-                    for (int k = 1; k < blocks; ++k) {
-                        gather(cp, opt, P, k, ndim, b, e);
-                    }
-                    run(keys + m, (blocks - 1) * m);
-                    scatter(cp, mp, opt, P, blocks, ref, b, e);
+        for_chunks(P, chunk, [&](std::size_t b, std::size_t e) {
+            const std::size_t m = e - b;
+            // The chunk's lanes in order_[b blocks, e blocks): base lanes first (the perturbed
+            // ones take their sub-increment counts), then every perturbed lane of the chunk as
+            // one queue, so lanes of equal work from different blocks share batches.
+            detail::LaneKey* keys = order_.data() + b * blocks;
+            for (int k = 0; k < blocks; ++k) {
+                for (std::size_t i = b; i < e; ++i) {
+                    keys[k * m + (i - b)].lane = k * P + i;
                 }
-            },
-            tbb::simple_partitioner());
+            }
+            gather(cp, opt, P, 0, ndim, b, e);
+            run(keys, m);
+            for (int k = 1; k < blocks; ++k) {
+                gather(cp, opt, P, k, ndim, b, e);
+            }
+            run(keys + m, (blocks - 1) * m);
+            scatter(cp, mp, opt, P, blocks, ref, b, e);
+        });
 
         ContactReport rep;
         rep.points = cp.size();

@@ -16,12 +16,9 @@
 
 #include <cstddef>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
-
 #include "engine/column_store.hpp"
 #include "engine/contact_points.hpp"
+#include "engine/parallel_chunks.hpp"
 #include "kernels/coulomb.hpp"
 
 namespace ifsim {
@@ -174,21 +171,13 @@ inline CoulombContactReport coulomb_contact_update(CoulombContactPoints& cp, con
                                                    const CoulombContactOptions& opt) {
     const std::size_t P = cp.padded();
     const std::size_t chunk = ((opt.chunk_points + simd::lanes - 1) / simd::lanes) * simd::lanes;
-    const std::size_t n_chunks = (P + chunk - 1) / chunk;
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, n_chunks, 1),
-        [&](const tbb::blocked_range<std::size_t>& r) {
-            for (std::size_t c = r.begin(); c != r.end(); ++c) {
-                const std::size_t b = c * chunk;
-                const std::size_t e = b + chunk < P ? b + chunk : P;
-                if (opt.simd) {
-                    detail::coulomb_range<simd::batch>(cp, p, b, e);
-                } else {
-                    detail::coulomb_range<double>(cp, p, b, e);
-                }
-            }
-        },
-        tbb::simple_partitioner());
+    for_chunks(P, chunk, [&](std::size_t b, std::size_t e) {
+        if (opt.simd) {
+            detail::coulomb_range<simd::batch>(cp, p, b, e);
+        } else {
+            detail::coulomb_range<double>(cp, p, b, e);
+        }
+    });
 
     // Serial reduction in point order: deterministic for any thread count.
     CoulombContactReport rep;

@@ -1,12 +1,9 @@
 #include "fem/set_material.hpp"
+#include "engine/parallel_chunks.hpp"
 
 #include <algorithm>
 #include <array>
 #include <optional>
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
 
 namespace ifsim::fem {
 namespace {
@@ -25,14 +22,7 @@ std::span<const int> active_components(int dim) {
 // the thread count (each point writes only its own data anyway).
 template <class F>
 void for_points(std::size_t n, F&& body) {
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, n, 512),
-        [&](const tbb::blocked_range<std::size_t>& r) {
-            for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                body(i);
-            }
-        },
-        tbb::simple_partitioner());
+    for_each_index(n, 512, std::forward<F>(body));
 }
 
 template <class M>

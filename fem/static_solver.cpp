@@ -6,10 +6,8 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
 
+#include "engine/parallel_chunks.hpp"
 #include "fem/element_kernels.hpp"
 #include "fem/loads.hpp"
 #include "fem/phase_timer.hpp"
@@ -23,19 +21,6 @@ double norm2(std::span<const double> v) {
         s += x * x;
     }
     return std::sqrt(s);
-}
-
-// Fixed-size chunks (simple_partitioner): the split never depends on the thread count.
-template <class F>
-void parallel_chunks(std::size_t n, std::size_t grain, F&& body) {
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, n, std::max<std::size_t>(grain, 1)),
-        [&](const tbb::blocked_range<std::size_t>& r) {
-            for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                body(i);
-            }
-        },
-        tbb::simple_partitioner());
 }
 
 // The last relative residuals of a Newton iteration, for a failure message.
@@ -349,7 +334,7 @@ void StaticSolver::external_force(double t, std::vector<double>& f) {
 template <int D>
 void StaticSolver::strains_d(std::span<const double> du) {
     using Tr = ElementTraits<D>;
-    parallel_chunks(
+    for_each_index(
         static_cast<std::size_t>(mesh_.n_elements()), settings_.element_grain, [&](std::size_t e) {
             SetData& s = *sets_[static_cast<std::size_t>(set_of_element_[e])];
             const int ei = static_cast<int>(e);
@@ -427,7 +412,7 @@ void StaticSolver::assemble_d(std::span<const double> du, bool with_tangent) {
     }
     for (int c = 0; c < system_->n_colours(); ++c) {
         const auto elements = system_->colour(c);
-        parallel_chunks(elements.size(), settings_.element_grain, [&](std::size_t k) {
+        for_each_index(elements.size(), settings_.element_grain, [&](std::size_t k) {
             const int e = elements[k];
             const auto eu = static_cast<std::size_t>(e);
             const auto set = static_cast<std::size_t>(set_of_element_[eu]);
