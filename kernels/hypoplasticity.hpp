@@ -1,7 +1,7 @@
 #pragma once
 // Hypoplasticity of von Wolffersdorff (1996) with the intergranular strain extension of
 // Niemunis & Herle (1997) and the interface roughness modification of Staubach, Machacek &
-// Wichtmann (2022), Eqs. 30-32. Equation notes: shared/models/hypoplasticity.md.
+// Wichtmann (2022), Eqs. 30-32. Equations and choices: docs/models.md.
 //
 // State (flat, see model_api.hpp): [0..5] T, [6] e, [7..12] h (intergranular strain, tensor
 // shear components). Mechanical sign convention throughout (compression negative).

@@ -1,6 +1,6 @@
 #pragma once
 // Sanisand 2004 (Dafalias & Manzari 2004) with the interface roughness modification of
-// Staubach, Machacek & Wichtmann (2022), Eqs. 33-35. Equation notes: shared/models/sanisand.md;
+// Staubach, Machacek & Wichtmann (2022), Eqs. 33-35. Equations and choices: docs/models.md;
 // rate equations in sanisand_rates.hpp, parameters in sanisand_params.hpp.
 //
 // State (flat, see model_api.hpp): [0..5] stress (mechanical sign), [6] e, [7..12] alpha

@@ -1,7 +1,7 @@
 #pragma once
 // Parameters of Sanisand 2004 (Dafalias & Manzari 2004, J Eng Mech 130(6)) with the interface
 // roughness factor kappa of Staubach, Machacek & Wichtmann (2022), Eqs. 33-35.
-// Equation notes: shared/models/sanisand.md.
+// Equations and choices: docs/models.md (Sanisand).
 
 #include <cmath>
 

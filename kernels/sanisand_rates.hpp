@@ -1,6 +1,6 @@
 #pragma once
 // The rate equations of Sanisand 2004 (Dafalias & Manzari 2004) at one state, for one strain
-// increment, written once over the value type T. Equation notes: shared/models/sanisand.md.
+// increment, written once over the value type T. Equations and choices: docs/models.md (Sanisand).
 //
 // Internally compression is positive (sigma_c = -sigma, deps_c = -deps), as in the paper; the
 // ratio tensors r, alpha, z, n are the same in both conventions. The flat state stores the
