@@ -13,6 +13,7 @@
 
 #include "engine/batched_update.hpp"
 #include "engine/material_choice.hpp"
+#include "engine/tangent_kind.hpp"
 
 namespace ifsim {
 
@@ -21,8 +22,6 @@ struct ElementStage {
     std::array<bool, 6> stress_controlled{}; // true: dsig_IJ given, false: deps_IJ given
     Sym<double> change{};                    // total change over the stage (strain or stress)
 };
-
-enum class TangentKind { perturbation, rate };
 
 struct ElementTestSettings {
     UpdateOptions update; // SIMD/scalar, integration tolerance etc.

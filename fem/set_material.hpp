@@ -22,8 +22,8 @@
 #include <vector>
 
 #include "engine/batched_update.hpp"
-#include "engine/element_test.hpp"
 #include "engine/material_choice.hpp"
+#include "engine/tangent_kind.hpp"
 
 namespace ifsim::fem {
 
