@@ -731,15 +731,17 @@ void StaticSolver::measure_initial_imbalance() {
     }
     imbalance_.evaluated = true;
     imbalance_.relative = norm2(residual_) / reference_force_;
+    // The largest entry per equation (a tied set's forces sum into its master's equation),
+    // named by the first node that carries it.
     double worst = -1.0;
     for (std::size_t d = 0; d < du_.size(); ++d) {
         const int eq = dofs_.equation[d];
-        const double r = eq >= 0 ? std::abs(f_ext_[d] - f_int_[d]) : 0.0;
-        if (r > worst) {
-            worst = r;
+        const double r = eq >= 0 ? residual_[static_cast<std::size_t>(eq)] : 0.0;
+        if (std::abs(r) > worst) {
+            worst = std::abs(r);
             imbalance_.node = static_cast<int>(d) / mesh_.dim();
             imbalance_.direction = static_cast<int>(d) % mesh_.dim();
-            imbalance_.force = f_ext_[d] - f_int_[d];
+            imbalance_.force = r;
         }
     }
 }
