@@ -37,7 +37,13 @@ struct ElementSetMaterial {
     double hourglass_shear_modulus = 0.0;
 };
 
+enum class Predictor { extrapolated, tangent, zero };
+
+// How displacements become strains and stresses become forces (fem/continuum_assembly.hpp).
+enum class Kinematics { small_strain };
+
 struct SolverSettings {
+    Kinematics kinematics = Kinematics::small_strain;
     Integration integration = Integration::full;
     // Hourglass stiffness k = c * G_ref * V * sum(bbar^2) per hourglass mode and direction
     // (Flanagan-Belytschko stiffness form; see docs/fem.md for the calibration of c).
@@ -52,9 +58,16 @@ struct SolverSettings {
     double displacement_tolerance = 1.0e-6;
     double reference_force_floor = 1.0e-12; // kN: keeps F_ref > 0 in an unloaded body
     int max_iterations = 20;
-    // First guess of the free DOFs: the previous converged increment of the stage scaled to the
-    // new increment's length (false: zero), the prescribed DOFs at their new values.
-    bool extrapolate = true;
+    // First guess of the free DOFs (the prescribed ones start at their new values):
+    //   extrapolated  the previous converged increment of the stage scaled to the new length;
+    //                 where there is none (a stage's first increment, a retry after a cut) the
+    //                 tangent predictor;
+    //   tangent       K(u_n) du = R(u_n) - K_fp du_p: the free DOFs follow the prescribed
+    //                 ones through the tangent at the committed state (one extra solve);
+    //   zero          the free DOFs start where they are.
+    // Without the tangent predictor a stage that reverses a prescribed motion starts from a
+    // guess where the prescribed body has moved into a soft neighbour alone (docs/fem.md).
+    Predictor predictor = Predictor::extrapolated;
     int max_cuts = 6; // halvings of one nominal increment before failing
     // After a cut the increment grows back (doubling, never past the nominal step) once
     // `growth_after` increments in a row converged at the smaller size.

@@ -25,6 +25,8 @@
 #include <vector>
 
 #include "fem/contact_pair.hpp"
+#include "fem/contact_set.hpp"
+#include "fem/continuum_assembly.hpp"
 #include "fem/dof_map.hpp"
 #include "fem/element_geometry.hpp"
 #include "fem/linear_solver.hpp"
@@ -32,6 +34,7 @@
 #include "fem/solver_settings.hpp"
 #include "fem/sparse_system.hpp"
 #include "fem/stage.hpp"
+#include "fem/stage_loads.hpp"
 
 namespace ifsim::fem {
 
@@ -61,9 +64,12 @@ struct SolverCounters {
     long stagnation_accepts = 0; // increments accepted at the inner solves' noise floor
     double worst_accepted_residual = 0.0; // largest relative residual of an accepted increment
     long increment_growths = 0;           // increments doubled back towards the nominal step
-    long gathers = 0;                     // re-gathers of the in-plane targets (implicit gather)
-    double worst_gather_change = 0.0;     // largest target change left in an accepted increment
-    long contact_relaxed_reruns = 0;      // see ContactPairCounters
+    long predictor_solves = 0;            // tangent predictors (one solve each)
+    long predictor_fallbacks = 0;         // tangent predictors with a singular tangent (zero guess)
+    long predictor_rejections = 0;    // tangent guesses whose residual was above the zero guess's
+    long gathers = 0;                 // re-gathers of the in-plane targets (implicit gather)
+    double worst_gather_change = 0.0; // largest target change left in an accepted increment
+    long contact_relaxed_reruns = 0;  // see ContactPairCounters
     double contact_relaxed_point_updates = 0.0;
     LinearSolverCounters linear;
 };
@@ -136,9 +142,9 @@ public:
     const std::vector<double>& external_force() const { return f_ext_committed_; }
     std::vector<double> state(int element, int point) const;       // committed
     std::vector<double> trial_state(int element, int point) const; // last evaluation
-    int points_per_element() const { return geom_.nip; }
+    int points_per_element() const { return continuum_->geometry().nip; }
     const Mesh& mesh() const { return mesh_; }
-    const ElementGeometry& geometry() const { return geom_; }
+    const ElementGeometry& geometry() const { return continuum_->geometry(); }
     const SolverCounters& counters() const;
     const InitialImbalance& initial_imbalance() const { return imbalance_; }
     SolverTimers timers() const; // the solver's phases plus the contact pairs'
@@ -147,7 +153,7 @@ public:
     // std::invalid_argument for unknown face sets or invalid settings, std::logic_error after
     // the first stage.
     void add_contact(ContactPairSpec spec);
-    const std::vector<std::unique_ptr<ContactPair>>& contacts() const { return contacts_; }
+    const std::vector<std::unique_ptr<ContactPair>>& contacts() const { return contacts_.pairs(); }
     const SolverSettings& settings() const { return settings_; }
 
     // Probing (tests, diagnostics): prepare a stage without running it, then evaluate the
@@ -161,43 +167,36 @@ public:
     const Eigen::SparseMatrix<double>& tangent_matrix() const { return system_->matrix(); }
 
 private:
-    struct SetData;
-    struct Spring {
-        std::string key;
-        std::vector<int> dofs;
-        std::vector<double> reference;
-        double stiffness = 0.0; // per node
-    };
-
     bool solve_increment(double t_begin, double t_end, IncrementInfo& info, std::string& error,
                          const IncrementCallback& on_iteration);
+    // First guess of the increment: prescribed DOFs at their new values, free DOFs by the
+    // settings' predictor.
+    bool first_guess(double t_begin, double t_end, std::string& error);
+    // First guess of the free DOFs by the tangent at the committed state (du_ in and out:
+    // the prescribed DOFs set, the free ones zero on entry). False with an empty error when
+    // that tangent cannot be factorised.
+    bool tangent_predictor(double t_end, std::string& error);
+    void zero_free_dofs(); // du_: prescribed_du_ on prescribed DOFs, zero elsewhere
+    // One Newton step from du_: solve with the tangent at du_, then backtrack on the residual
+    // norm; rel in: the residual at du_, out: at the new iterate.
+    bool newton_step(double t_end, double& rel, double& correction, IncrementInfo& info,
+                     std::string& error);
     bool residual_pass(double t, std::span<const double> du, std::string& error);
-    void tangent_pass(std::span<const double> du);
-    void compute_strains(std::span<const double> du);
-    bool update_materials(bool with_tangent, std::string& error);
-    void assemble(std::span<const double> du, bool with_tangent);
-    void external_force(double t, std::vector<double>& f);
+    void tangent_pass(std::span<const double> du, PrescribedCoupling* coupling = nullptr);
     // Pairs every contact at the committed configuration and gathers its stresses; rebuilds
     // the sparse pattern when the stage's DOF map or a pairing changed.
     void begin_contacts(bool dofs_changed);
-    void element_stresses(int element, std::vector<Voigt6>& out, bool trial = false) const;
+    ElementStresses stresses(bool trial) const;
     // After Newton converged: re-gathers the in-plane targets; true when they settled.
     bool targets_settled(IncrementInfo& info, std::string& error);
-    void apply_k0();
-    void hourglass_stiffness();
-    template <int D>
-    void strains_d(std::span<const double> du);
-    template <int D>
-    void assemble_d(std::span<const double> du, bool with_tangent);
+    void commit_increment(double dt);
+    void measure_initial_imbalance();
 
     Mesh mesh_;
     SolverSettings settings_;
-    ElementGeometry geom_;
-    std::vector<std::unique_ptr<SetData>> sets_;
-    std::vector<int> set_of_element_;
-    std::vector<int> local_of_element_;
-    std::vector<double> hourglass_k_;                       // per element (reduced integration)
-    std::vector<std::array<const double*, 6>> stress_cols_; // per set: trial stress columns
+    std::unique_ptr<ContinuumAssembly> continuum_;
+    ContactSet contacts_;
+    StageLoads loads_;
 
     // Stage data.
     std::optional<Stage> stage_; // the running stage (a copy)
@@ -206,9 +205,6 @@ private:
     std::unique_ptr<SparseSystem> system_;
     LinearSolver linear_;
     std::vector<double> u_stage_start_;
-    std::vector<Spring> springs_;
-    std::vector<double> gravity_unit_; // empty until a stage asks for gravity
-    std::map<std::string, std::vector<double>> pressure_unit_;
 
     // Displacements and forces.
     std::vector<double> u_;        // committed
@@ -225,16 +221,14 @@ private:
     double reference_force_ = 0.0;
     double reference_sum_ = 0.0; // sum of the converged increments' force levels
     long committed_references_ = 0;
-
-    // Contact pairs and their scratch.
-    std::vector<std::unique_ptr<ContactPair>> contacts_;
-    std::vector<double> contact_du_;
-    std::vector<ContactTriplet> contact_K_;
-    double contact_matrix_s_ = 0.0; // adding the contact tangent entries to the matrix
+    // Tangent predictor: the prescribed DOFs' increments (zero elsewhere) and -K_fp du_p plus
+    // the residual at zero increment on the free equations.
+    std::vector<double> prescribed_du_;
+    std::vector<double> predictor_rhs_; // reduced
+    std::vector<double> predicted_du_;  // the tangent predictor's guess, while compared
+    std::vector<double> contact_du_;    // the trial increment handed to the contact pairs
 
     InitialImbalance imbalance_;
-    void measure_initial_imbalance();
-
     mutable SolverCounters counters_;
     SolverTimers timers_;
 };

@@ -180,6 +180,9 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
         c.constitutive_evaluations + rounded(c.contact_constitutive_evaluations);
     k["cuts"] = c.cuts;
     k["increment_growths"] = c.increment_growths;
+    k["predictor_solves"] = c.predictor_solves;
+    k["predictor_fallbacks"] = c.predictor_fallbacks;
+    k["predictor_rejections"] = c.predictor_rejections;
     k["line_search_steps"] = c.line_search_steps;
     k["stagnation_accepts"] = c.stagnation_accepts;
     k["gathers"] = c.gathers;
@@ -255,6 +258,7 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     }
     d["linear_solver"] = scene.linear_solver;
     d["tangent"] = scene.tangent;
+    d["predictor"] = scene.predictor;
     d["stages"] = scene.stages.size();
     d["steps"] = scene.total_steps();
     d["rows"] = run.rows;

@@ -20,7 +20,7 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
     const TableReader t = root.table("solver");
     t.allow_only({"residual_tolerance", "displacement_tolerance", "max_iterations", "max_cuts",
                   "growth_after", "max_line_search", "stagnation_tolerance", "gather_tolerance",
-                  "max_gathers", "linear_solver", "tangent", "extrapolate"});
+                  "max_gathers", "linear_solver", "tangent", "predictor", "extrapolate"});
     s.residual_tolerance =
         t.number_or("residual_tolerance", s.residual_tolerance, Bounds::open(0.0, 1.0));
     s.displacement_tolerance =
@@ -41,7 +41,16 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
         t.choice_or("tangent", "perturbation", {"perturbation", "fixed-substeps", "rate"});
     s.tangent.kind = scene.tangent == "rate" ? TangentKind::rate : TangentKind::perturbation;
     s.tangent.fixed_substeps = scene.tangent == "fixed-substeps";
-    s.extrapolate = t.boolean_or("extrapolate", s.extrapolate);
+    if (t.has("predictor") && t.has("extrapolate")) {
+        t.fail("extrapolate", "give either predictor or the older extrapolate, not both");
+    }
+    scene.predictor = t.choice_or("predictor", "extrapolated", {"extrapolated", "tangent", "zero"});
+    if (t.has("extrapolate")) { // older key: false meant free DOFs starting at zero
+        scene.predictor = t.boolean_or("extrapolate", true) ? "extrapolated" : "zero";
+    }
+    s.predictor = scene.predictor == "tangent" ? fem::Predictor::tangent
+                  : scene.predictor == "zero"  ? fem::Predictor::zero
+                                               : fem::Predictor::extrapolated;
 }
 
 std::string node_set(const TableReader& t, std::string_view key, const fem::Mesh& mesh) {

@@ -39,6 +39,7 @@ struct BoundaryValueScene {
     fem::SolverSettings settings;
     std::string linear_solver; // umfpack | klu
     std::string tangent;       // perturbation | fixed-substeps | rate
+    std::string predictor = "extrapolated"; // extrapolated | tangent | zero
     // [interface] (one pair, named "interface") or the [[contact]] entries, in order.
     std::vector<BoundaryValueInterface> contacts;
     BoundaryValueOutput output;

@@ -9,7 +9,9 @@ A change that must not change any number (a refactoring) is checked like this:
 
 For every scene of scenes/ (or those given with --scenes) it runs `ifsim run SCENE --out
 OUT/<scene> -q --threads N` and, with --against, compares OUT/<scene>/history.csv with
-REF/<scene>/history.csv: identical, or the first differing row and column with both values.
+REF/<scene>/history.csv: identical, or the first differing row and column with both values and
+the largest relative difference over all numeric cells (for a change meant to move numbers
+only at the solver's tolerance).
 A scene whose run fails is a difference too (its status and reason are printed).
 """
 import argparse
@@ -51,6 +53,33 @@ def first_difference(new_path, ref_path):
     return f"{len(new_rows) - 1} rows now, {len(ref_rows) - 1} stored"
 
 
+# How the solver got there, not the result: left out of the relative difference.
+SOLVER_COLUMNS = {"increment", "stage", "newton_iterations", "cuts", "residual", "iterations",
+                  "substeps", "subincrements"}
+
+
+def largest_relative_difference(new_path, ref_path):
+    """The largest |a - b| / max(|a|, |b|, floor) over the numeric cells of two histories with
+    the same rows, with its column; floor keeps values near zero from dominating."""
+    new_rows = list(csv.reader(io.StringIO(new_path.read_text())))
+    ref_rows = list(csv.reader(io.StringIO(ref_path.read_text())))
+    if len(new_rows) != len(ref_rows) or new_rows[:1] != ref_rows[:1]:
+        return None
+    header = new_rows[0]
+    worst = (0.0, "")
+    for a, b in zip(new_rows[1:], ref_rows[1:]):
+        for c, (x, y) in enumerate(zip(a, b)):
+            if header[c] in SOLVER_COLUMNS:
+                continue
+            try:
+                fx, fy = float(x), float(y)
+            except ValueError:
+                continue
+            scale = max(abs(fx), abs(fy), 1.0e-3)
+            worst = max(worst, (abs(fx - fy) / scale, header[c]))
+    return worst
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -86,7 +115,9 @@ def main():
             print(f"{name}: identical ({wall:.1f} s)", flush=True)
         else:
             differences += 1
-            print(f"{name}: DIFFERS: {why}", flush=True)
+            rel = largest_relative_difference(new, ref) if code == 0 and ref.exists() else None
+            size = f"; largest relative difference {rel[0]:.2e} ({rel[1]})" if rel else ""
+            print(f"{name}: DIFFERS: {why}{size}", flush=True)
     if a.against:
         print(f"{len(scenes) - differences} of {len(scenes)} scenes identical")
         return 1 if differences else 0

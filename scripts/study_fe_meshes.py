@@ -78,6 +78,10 @@ def cases(quick, msh_dir):
     out.append(("2d-lift-off-novel", SCENES / "fe-lift-off-2d.toml", [], "opening"))
     out.append(("2d-lift-off-stutz", SCENES / "fe-lift-off-2d.toml",
                 ['interface.formulation="stutz"'], "opening"))
+    out.append(("2d-lift-off-and-back-novel", SCENES / "fe-lift-off-and-back-2d.toml", [],
+                "opening"))
+    out.append(("2d-lift-off-and-back-stutz", SCENES / "fe-lift-off-and-back-2d.toml",
+                ['interface.formulation="stutz"'], "opening"))
     out.append(("2d-novel-one-increment", two_d,
                 ["stage.2.steps=1", ADAPTIVE], "coarse"))
     out.append(("2d-novel-10-increments", two_d,

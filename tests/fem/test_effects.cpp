@@ -29,7 +29,7 @@ TEST(Effects, NoGravityNoK0NoPressureCostsNothing) {
     ASSERT_TRUE(solver.run_stage(oedometer(3, -2e-3)).ok);
     const auto& c = solver.counters();
     const auto& t = solver.timers();
-    EXPECT_GT(c.newton_iterations, 0);
+    EXPECT_GT(c.newton_iterations + c.predictor_solves, 0);
     EXPECT_EQ(c.gravity_load_builds, 0);
     EXPECT_EQ(c.gravity_load_applications, 0);
     EXPECT_EQ(c.pressure_load_builds, 0);
@@ -72,8 +72,10 @@ TEST(Effects, K0StressWithMatchingGravityIsInEquilibrium) {
     EXPECT_LT(infos[0].residuals[0], 1e-12);
     EXPECT_LT(max_abs(solver.displacement()), 1e-15);
     EXPECT_EQ(solver.counters().gravity_load_builds, 1);
-    // Two increments and the initial-imbalance check of the first stage.
-    EXPECT_EQ(solver.counters().gravity_load_applications, 3);
+    // Two increments, the first one's tangent predictor (residual passes at zero increment
+    // and at the two guesses it compares) and the initial-imbalance check of the first stage.
+    EXPECT_EQ(solver.counters().predictor_solves, 1);
+    EXPECT_EQ(solver.counters().gravity_load_applications, 6);
     EXPECT_EQ(solver.counters().pressure_load_builds, 1);
     EXPECT_GT(solver.timers().gravity, 0.0);
 }
@@ -95,13 +97,16 @@ TEST(Effects, ConstitutiveWorkIsCountedPerLane) {
         st.pressures = {{"top", 80.0, 120.0}};
         ASSERT_TRUE(solver.run_stage(st).ok);
         const auto& c = solver.counters();
-        // Residual evaluations: one per increment and Newton iteration, and the first stage's
-        // check of the initial state's equilibrium.
-        const long evaluations = c.increments + c.newton_iterations + 1;
+        // Residual evaluations: one per increment and Newton iteration, three per tangent
+        // predictor (the stage's first increment: at zero increment and at the two guesses it
+        // compares), and the first stage's check of the initial equilibrium.
+        EXPECT_EQ(c.predictor_solves, 1);
+        const long evaluations = c.increments + c.newton_iterations + 3 * c.predictor_solves + 1;
         EXPECT_EQ(c.increments, 2);
         if (kind == TangentKind::perturbation) {
-            // 6 adaptive perturbed lanes per point and Newton iteration (3D).
-            EXPECT_EQ(c.tangent_evaluations, 6 * points * c.newton_iterations);
+            // 6 adaptive perturbed lanes per point, Newton iteration and predictor (3D).
+            EXPECT_EQ(c.tangent_evaluations,
+                      6 * points * (c.newton_iterations + c.predictor_solves));
         } else {
             EXPECT_EQ(c.tangent_evaluations, 0);
         }

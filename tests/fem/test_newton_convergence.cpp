@@ -66,7 +66,7 @@ TEST(NewtonConvergence, LinearElasticityConvergesInOneIteration) {
         distort(m, 0.15, 0.3);
         SolverSettings s;
         s.tangent.kind = TangentKind::rate; // the exact tangent of Hooke's law
-        s.extrapolate = false;
+        s.predictor = fem::Predictor::zero;
         StaticSolver solver(m, {material(LinearElasticParams{2e4, 0.3}, elastic_state())}, s);
         std::vector<IncrementInfo> infos;
         const auto res =

@@ -125,6 +125,15 @@ TEST(BoundaryValueScene, BadInputNamesFileAndKey) {
                        "{ nodes = \"soil.top\", direction = \"x\" } ]\nequal = [ { nodes = "
                        "\"soil.top\", direction = \"x\" } ]\npressure"),
         "stage.1", "contradict");
+    // The first guess: one of three names, and not both the key and its older form.
+    const std::string with_output = "[output]";
+    test::expect_boundary_value_error(
+        test::replaced(text, with_output, "[solver]\npredictor = \"linear\"\n\n[output]"),
+        "solver.predictor", "\"tangent\"");
+    test::expect_boundary_value_error(
+        test::replaced(text, with_output,
+                       "[solver]\npredictor = \"zero\"\nextrapolate = true\n\n[output]"),
+        "solver.extrapolate", "not both");
 }
 
 TEST(BoundaryValueRun, ShortRunWritesHistoryAndSummary) {

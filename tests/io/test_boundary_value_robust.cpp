@@ -117,5 +117,29 @@ TEST(ContactOpening, NovelAndStutzFollowTheContactOpen) {
     }
 }
 
+// Opens and closes again: the plate lowered until t_N is above -open_threshold (the interface
+// keeps its state), then raised back. The return's first increment starts from the tangent
+// predictor; from a guess with only the plate moved, the plate sat 3.75 um inside a soil at
+// 0.16 kPa (t_N = -375 kPa) and Newton stopped after a 46 mm correction.
+TEST(ContactOpening, NovelClosesAgainAfterOpening) {
+    const fs::path dir = run_box("lift-off-and-back", {}, "scenes/fe-lift-off-and-back-2d.toml");
+    ASSERT_EQ(test::summary(dir)["status"], "ok");
+    const auto h = test::read_history(dir);
+    double highest = -1.0e9;
+    std::size_t opened_at = 0;
+    for (std::size_t r = 0; r < h.rows.size(); ++r) {
+        if (h.number(r, "t_n") > highest) {
+            highest = h.number(r, "t_n");
+            opened_at = r;
+        }
+    }
+    EXPECT_GT(highest, -1.0);                     // open: above -open_threshold
+    EXPECT_EQ(h.number(opened_at, "stage"), 2.0); // at the end of the lowering
+    const std::size_t last = h.rows.size() - 1;
+    EXPECT_LT(h.number(last, "t_n"), -20.0); // closed and carrying load again
+    EXPECT_GT(h.number(last, "t_t1"), 0.0);  // and shear in the direction of the plate's motion
+    EXPECT_GT(test::summary(dir)["counters"]["predictor_solves"].get<long>(), 0);
+}
+
 } // namespace
 } // namespace ifsim::io

@@ -1,0 +1,101 @@
+#pragma once
+// The continuum of a finite-element model: its element sets with their material points (one
+// batched SetMaterial per set), the integration-point geometry, and the element loops that
+// turn a displacement increment into strain increments, stresses into internal forces and
+// material tangents into the global matrix.
+//
+// Kinematics seam: how displacements become strains and stresses become forces is chosen by
+// SolverSettings::kinematics. Small strain is the only choice today: the geometry is built
+// once from the reference configuration, strains are B du, forces B^T sigma dV and tangents
+// B^T D B dV (fem/element_kernels.hpp). A finite-strain variant (updated Lagrangian) adds its
+// case to strains(), internal_force() and tangent() with a geometry of the current
+// configuration and the objective stress rate; the material sets and the solver stay as they
+// are.
+
+#include <array>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fem/element_geometry.hpp"
+#include "fem/mesh.hpp"
+#include "fem/set_material.hpp"
+#include "fem/solver_settings.hpp"
+#include "fem/sparse_system.hpp"
+#include "fem/stress_extrapolation.hpp"
+
+namespace ifsim::fem {
+
+struct ContinuumCounters {
+    long constitutive_evaluations = 0; // point updates incl. perturbation lanes
+    long tangent_evaluations = 0;      // of which perturbation lanes
+    long tangent_fallbacks = 0;        // points whose perturbation lanes failed (rate used)
+    long failed_point_updates = 0;     // base updates with status failed
+    long k0_points = 0;                // integration points given a K0 initial stress
+};
+
+// The prescribed DOFs' part of a tangent (the tangent predictor): while assembling, every
+// entry K(r, c) with r free and c prescribed adds -K(r, c) du_p(c) to rhs(r).
+struct PrescribedCoupling {
+    std::span<const double> prescribed_du; // full DOF vector, zero at free DOFs
+    std::vector<double>& rhs;              // reduced (per equation)
+};
+
+class ContinuumAssembly {
+public:
+    // Throws std::invalid_argument for an element without material or in two sets, an
+    // initial state of the wrong length, or an inverted element. Applies the sets' K0 stress.
+    ContinuumAssembly(const Mesh& mesh, std::vector<ElementSetMaterial> materials,
+                      const SolverSettings& settings, double& k0_seconds);
+    ~ContinuumAssembly();
+
+    // Strain increments of every integration point from the displacement increment.
+    void strains(const Mesh& mesh, std::span<const double> du);
+    // Trial states from the strain increments; false (error names set, element and point)
+    // when a point failed.
+    bool update(std::string& error);
+    // Material tangents at the trial states (after update()).
+    void material_tangents(int dim);
+    // f_int of the trial stresses (plus hourglass forces of the total displacement u + du);
+    // f is overwritten, full DOF length.
+    void internal_force(const Mesh& mesh, const SparseSystem& system, std::span<const double> u,
+                        std::span<const double> du, std::vector<double>& f);
+    // Element tangents scattered into the (zeroed) system matrix, colour by colour; with a
+    // coupling, the prescribed DOFs' columns go to its right-hand side.
+    void tangent(const Mesh& mesh, SparseSystem& system, PrescribedCoupling* coupling);
+    void commit();
+
+    std::vector<double> state(int element, int point) const;       // committed
+    std::vector<double> trial_state(int element, int point) const; // last evaluation
+    void element_stresses(int element, std::vector<Voigt6>& out, bool trial) const;
+    // Density of every element (t/m^3), for the gravity load.
+    std::vector<double> densities(int n_elements) const;
+    const ElementGeometry& geometry() const { return geom_; }
+    const ContinuumCounters& counters() const { return counters_; }
+
+private:
+    struct SetData;
+    template <int D>
+    void strains_d(const Mesh& mesh, std::span<const double> du);
+    template <int D>
+    void internal_force_d(const Mesh& mesh, const SparseSystem& system, std::span<const double> u,
+                          std::span<const double> du, std::vector<double>& f);
+    template <int D>
+    void tangent_d(const Mesh& mesh, SparseSystem& system, PrescribedCoupling* coupling);
+    void apply_k0(int dim, double& k0_seconds);
+    void hourglass_stiffness(int n_elements);
+    const SetData& set_of(int element) const;
+    std::size_t point_of(int element, int q) const;
+
+    SolverSettings settings_;
+    ElementGeometry geom_;
+    std::vector<std::unique_ptr<SetData>> sets_;
+    std::vector<int> set_of_element_;
+    std::vector<int> local_of_element_;
+    std::vector<double> hourglass_k_;                       // per element (reduced integration)
+    std::vector<std::array<const double*, 6>> stress_cols_; // per set: trial stress columns
+    ContinuumCounters counters_;
+};
+
+} // namespace ifsim::fem
