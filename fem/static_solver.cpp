@@ -1,3 +1,5 @@
+// StaticSolver: the increment control, the first guess and Newton (the passes that evaluate
+// residual and tangent, the stage set-up and the reports are in static_solver_passes.cpp).
 #include "fem/static_solver.hpp"
 
 #include <algorithm>
@@ -8,17 +10,10 @@
 #include <fmt/format.h>
 
 #include "fem/phase_timer.hpp"
+#include "fem/vector_norm.hpp"
 
 namespace ifsim::fem {
 namespace {
-
-double norm2(std::span<const double> v) {
-    double s = 0.0;
-    for (double x : v) {
-        s += x * x;
-    }
-    return std::sqrt(s);
-}
 
 // The last relative residuals of a Newton iteration, for a failure message.
 std::string residual_trace(const std::vector<double>& residuals) {
@@ -32,198 +27,6 @@ std::string residual_trace(const std::vector<double>& residuals) {
 }
 
 } // namespace
-
-StaticSolver::StaticSolver(Mesh mesh, std::vector<ElementSetMaterial> materials,
-                           SolverSettings settings)
-    : mesh_(std::move(mesh)), settings_(std::move(settings)), linear_(settings_.linear_solver) {
-    mesh_.validate();
-    continuum_ =
-        std::make_unique<ContinuumAssembly>(mesh_, std::move(materials), settings_, timers_.k0);
-    const auto n_dofs = static_cast<std::size_t>(mesh_.n_nodes() * mesh_.dim());
-    u_.assign(n_dofs, 0.0);
-    du_.assign(n_dofs, 0.0);
-    f_int_.assign(n_dofs, 0.0);
-    f_int_committed_.assign(n_dofs, 0.0);
-    f_ext_.assign(n_dofs, 0.0);
-    f_ext_committed_.assign(n_dofs, 0.0);
-}
-
-StaticSolver::~StaticSolver() = default;
-
-const SolverCounters& StaticSolver::counters() const {
-    counters_.linear = linear_.counters();
-    const ContinuumCounters& m = continuum_->counters();
-    counters_.constitutive_evaluations = m.constitutive_evaluations;
-    counters_.tangent_evaluations = m.tangent_evaluations;
-    counters_.tangent_fallbacks = m.tangent_fallbacks;
-    counters_.failed_point_updates = m.failed_point_updates;
-    counters_.k0_points = m.k0_points;
-    const LoadCounters& l = loads_.counters();
-    counters_.gravity_load_builds = l.gravity_load_builds;
-    counters_.gravity_load_applications = l.gravity_load_applications;
-    counters_.pressure_load_builds = l.pressure_load_builds;
-    const ContactSetCounters c = contacts_.counters();
-    counters_.contact_pairings = c.pairings;
-    counters_.contact_evaluations = c.evaluations;
-    counters_.contact_point_updates = c.point_updates;
-    counters_.contact_lanes = c.lanes;
-    counters_.contact_subincrements = c.subincrements;
-    counters_.contact_constitutive_evaluations = c.constitutive_evaluations;
-    counters_.contact_failures = c.failures;
-    counters_.contact_relaxed_reruns = c.relaxed_reruns;
-    counters_.contact_relaxed_point_updates = c.relaxed_point_updates;
-    return counters_;
-}
-
-SolverTimers StaticSolver::timers() const {
-    SolverTimers t = timers_;
-    t.gravity = loads_.timers().gravity;
-    t.pressure = loads_.timers().pressure;
-    const ContactPairTimers c = contacts_.timers();
-    t.contact_search = c.search;
-    t.contact_gather = c.gather;
-    t.contact_kernels = c.kernels;
-    t.contact_scatter = c.scatter;
-    return t;
-}
-
-void StaticSolver::add_contact(ContactPairSpec spec) {
-    if (stage_count_ > 0) {
-        throw std::logic_error("contact pairs are added before the first stage");
-    }
-    contacts_.add(mesh_, std::move(spec));
-}
-
-ElementStresses StaticSolver::stresses(bool trial) const {
-    return [this, trial](int e, std::vector<Voigt6>& out) {
-        continuum_->element_stresses(e, out, trial);
-    };
-}
-
-void StaticSolver::begin_contacts(bool dofs_changed) {
-    const bool changed = contacts_.begin_increment(mesh_, u_, stresses(false)) || dofs_changed;
-    if (!changed && system_) {
-        return;
-    }
-    system_ = std::make_unique<SparseSystem>(mesh_, dofs_, contacts_.couplings());
-    ++counters_.patterns_built;
-    counters_.contact_pattern_rebuilds += dofs_changed ? 0 : 1;
-}
-
-std::vector<double> StaticSolver::state(int element, int point) const {
-    return continuum_->state(element, point);
-}
-
-std::vector<double> StaticSolver::trial_state(int element, int point) const {
-    return continuum_->trial_state(element, point);
-}
-
-void StaticSolver::begin_stage(const Stage& stage) {
-    DofMap next = build_dof_map(mesh_, stage); // throws before anything changes
-    StageLoads::check(mesh_, stage);
-    stage_ = stage;
-    ++stage_count_;
-    const bool dofs_changed = !system_ || next.equation != dofs_.equation;
-    dofs_ = std::move(next);
-    if (!contacts_.empty()) {
-        begin_contacts(dofs_changed);
-    } else if (dofs_changed) {
-        system_ = std::make_unique<SparseSystem>(mesh_, dofs_);
-        ++counters_.patterns_built;
-    }
-    u_stage_start_ = u_;
-    dt_last_ = 0.0;
-    loads_.begin(mesh_, stage, u_,
-                 stage.gravity ? continuum_->densities(mesh_.n_elements()) : std::vector<double>{});
-    residual_.assign(static_cast<std::size_t>(dofs_.n_equations), 0.0);
-    correction_.assign(static_cast<std::size_t>(dofs_.n_equations), 0.0);
-}
-
-// Residual R = f_ext(t) - f_int(u + du) on the equations: continuum, springs, contact.
-bool StaticSolver::residual_pass(double t, std::span<const double> du, std::string& error) {
-    {
-        PhaseTimer timer(timers_.element);
-        continuum_->strains(mesh_, du);
-        if (!continuum_->update(error)) {
-            return false;
-        }
-    }
-    {
-        PhaseTimer timer(timers_.assembly);
-        continuum_->internal_force(mesh_, *system_, u_, du, f_int_);
-        loads_.add_spring_forces(u_, du, f_int_);
-    }
-    if (!contacts_.empty()) {
-        contact_du_.assign(du.begin(), du.end());
-        if (!contacts_.evaluate(contact_du_, f_int_, error)) {
-            return false;
-        }
-    }
-    loads_.external_force(t, f_ext_);
-    PhaseTimer timer(timers_.assembly);
-    std::fill(residual_.begin(), residual_.end(), 0.0);
-    for (std::size_t d = 0; d < u_.size(); ++d) {
-        const int eq = dofs_.equation[d];
-        if (eq >= 0) {
-            residual_[static_cast<std::size_t>(eq)] += f_ext_[d] - f_int_[d];
-        }
-    }
-    // The force level of the run: this state's, or the mean over the converged increments
-    // (time-averaged, as Abaqus does), so that a body unloaded towards zero stress is not
-    // held to a residual relative to its vanishing forces.
-    const double averaged = committed_references_ > 0
-                                ? reference_sum_ / static_cast<double>(committed_references_)
-                                : 0.0;
-    reference_force_ =
-        std::max({norm2(f_ext_), norm2(f_int_), averaged, settings_.reference_force_floor});
-    return true;
-}
-
-// Needs the residual pass at the same increment just before (the perturbation lanes start from
-// its strain increments and compare with its substep counts).
-void StaticSolver::tangent_pass(std::span<const double> du, PrescribedCoupling* coupling) {
-    (void)du; // small strain: the tangent does not depend on the iterate's geometry
-    {
-        PhaseTimer timer(timers_.element);
-        continuum_->material_tangents(mesh_.dim());
-    }
-    {
-        PhaseTimer timer(timers_.assembly);
-        system_->zero_values();
-        continuum_->tangent(mesh_, *system_, coupling);
-        loads_.add_spring_stiffness(dofs_.equation,
-                                    [&](int eq, double k) { system_->add_diagonal(eq, k); });
-    }
-    contacts_.add_tangent([&](int row, int col, double value) {
-        const int r = dofs_.equation[static_cast<std::size_t>(row)];
-        const int q = dofs_.equation[static_cast<std::size_t>(col)];
-        if (r >= 0 && q >= 0) {
-            system_->add_value(r, q, value);
-        } else if (coupling != nullptr && r >= 0) {
-            coupling->rhs[static_cast<std::size_t>(r)] -=
-                value * coupling->prescribed_du[static_cast<std::size_t>(col)];
-        }
-    });
-}
-
-bool StaticSolver::evaluate(double t, std::span<const double> increment, bool with_tangent,
-                            std::string& error) {
-    if (!stage_) {
-        error = "evaluate() before begin_stage()";
-        return false;
-    }
-    if (increment.size() != u_.size()) {
-        error = fmt::format("increment of length {} for {} DOFs", increment.size(), u_.size());
-        return false;
-    }
-    if (!residual_pass(t, increment, error)) {
-        return false;
-    }
-    if (with_tangent) {
-        tangent_pass(increment);
-    }
-    return true;
-}
 
 // One increment: first guess, then Newton until converged (or at the inner solves' noise
 // floor) with the in-plane targets settled. Nothing is committed here.
@@ -453,36 +256,6 @@ void StaticSolver::commit_increment(double dt) {
     dt_last_ = dt;
     f_ext_committed_ = f_ext_;
     ++counters_.increments;
-}
-
-void StaticSolver::measure_initial_imbalance() {
-    if (!contacts_.empty()) {
-        begin_contacts(false);
-    }
-    std::fill(du_.begin(), du_.end(), 0.0);
-    for (std::size_t k = 0; k < dofs_.prescribed.size(); ++k) {
-        const auto d = static_cast<std::size_t>(dofs_.prescribed[k]);
-        du_[d] = u_stage_start_[d] - u_[d];
-    }
-    std::string error;
-    if (!residual_pass(0.0, du_, error)) {
-        return; // the first increment reports the failure
-    }
-    imbalance_.evaluated = true;
-    imbalance_.relative = norm2(residual_) / reference_force_;
-    // The largest entry per equation (a tied set's forces sum into its master's equation),
-    // named by the first node that carries it.
-    double worst = -1.0;
-    for (std::size_t d = 0; d < du_.size(); ++d) {
-        const int eq = dofs_.equation[d];
-        const double r = eq >= 0 ? residual_[static_cast<std::size_t>(eq)] : 0.0;
-        if (std::abs(r) > worst) {
-            worst = std::abs(r);
-            imbalance_.node = static_cast<int>(d) / mesh_.dim();
-            imbalance_.direction = static_cast<int>(d) % mesh_.dim();
-            imbalance_.force = r;
-        }
-    }
 }
 
 StageResult StaticSolver::run_stage(const Stage& stage, const IncrementCallback& on_increment,

@@ -138,7 +138,7 @@ inline bool state_is_finite(const auto& y) {
 #include <string>
 
 #include "engine/contact_update.hpp"
-#include "engine/interface_test.hpp"
+#include "engine/interface_test_driver.hpp"
 
 namespace ifsim::test {
 

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "engine/element_test.hpp"
+#include "engine/element_test_driver.hpp"
 #include "kernels/parameter_sets.hpp"
 
 using namespace ifsim;

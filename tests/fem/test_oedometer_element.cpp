@@ -1,10 +1,10 @@
 // One element in oedometric compression with hypoplasticity (lateral displacements fixed)
-// against the point-level element test (engine/element_test.hpp): the finite element and the
+// against the point-level element test (engine/element_test_driver.hpp): the finite element and the
 // material engine must give the same stress path, by prescribed displacement (hex8 and
 // plane-strain quad4) and by a top pressure on a rigid plate (stress control).
 #include <gtest/gtest.h>
 
-#include "engine/element_test.hpp"
+#include "engine/element_test_driver.hpp"
 #include "tests/fem/fem_test_support.hpp"
 
 using namespace ifsim;

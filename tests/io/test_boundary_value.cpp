@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "engine/interface_test.hpp"
+#include "engine/interface_test_driver.hpp"
 #include "io/boundary_value_scene.hpp"
 #include "io/cli.hpp"
 #include "io/interface_test_scene.hpp"

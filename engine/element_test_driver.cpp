@@ -1,4 +1,4 @@
-#include "engine/element_test.hpp"
+#include "engine/element_test_driver.hpp"
 
 #include "engine/point_evaluator.hpp"
 

@@ -1,0 +1,208 @@
+#pragma once
+// The interface point of the point-level interface shear test as its driver sees it
+// (engine/interface_test_driver.cpp): an evaluation at (t_N, dg_T1, dg_T2, s_p1, s_p2) gives
+// the shear tractions and their derivatives; commit accepts the trial state. Two kinds: a
+// continuum model through Algorithm 1 and the contact engine (novel or Stutz), and Coulomb
+// penalty friction with its exact return mapping.
+
+#include <chrono>
+#include <stdexcept>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "engine/contact_update.hpp"
+#include "engine/interface_test_driver.hpp"
+#include "engine/point_evaluator.hpp"
+#include "kernels/coulomb.hpp"
+
+namespace ifsim::detail {
+
+using Clock = std::chrono::steady_clock;
+inline double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// What the driver needs of the interface point after an evaluation.
+struct InterfaceResponse {
+    bool ok = true;
+    double cause = 0.0; // interface_failure code when !ok
+    double tau[2] = {0.0, 0.0};
+    double dtau_dg[2][2] = {{0.0, 0.0}, {0.0, 0.0}}; // d tau_a / d dg_T,b
+    double dtau_dtN[2] = {0.0, 0.0};
+    double dtau_dsp[2][2] = {{0.0, 0.0}, {0.0, 0.0}}; // d tau_a / d s_p(b+1), novel only
+    double residual = 0.0;
+};
+
+// A continuum model used as interface model through Algorithm 1 and the contact engine.
+template <class Mi>
+class ContinuumInterface {
+public:
+    static constexpr int NS = Mi::n_state;
+    ContinuumInterface(const typename Mi::Params& p, const std::vector<double>& y0,
+                       const ContactOptions& opt, InterfaceTestResult& res)
+        : params_(p), opt_(opt), res_(res), points_(1, 3) {
+        if (static_cast<int>(y0.size()) != NS) {
+            throw std::invalid_argument(fmt::format(
+                "interface state of model {} needs {} values, got {}", Mi::name, NS, y0.size()));
+        }
+        StateVec<double, NS> y{};
+        std::copy(y0.begin(), y0.end(), y.begin());
+        points_.set_state(0, y);
+        const double n[3] = {1, 0, 0}, t1[3] = {0, 1, 0}, t2[3] = {0, 0, 1};
+        points_.set_frame(0, n, t1, t2);
+        // t_N is prescribed by the driver, not a penalty: k_N = 1 makes the slave's normal
+        // perturbation lane the derivative with respect to t_N itself.
+        points_.input(contact_col::k_N)[0] = 1.0;
+    }
+
+    InterfaceResponse evaluate(double t_N, double dg1, double dg2, double s_p1, double s_p2) {
+        InterfaceResponse r;
+        if (opt_.interface.formulation == InterfaceFormulation::novel) {
+            // The novel formulation's traction also depends on the extrapolated continuum
+            // stress (Eqs. 19-20), which the Eq. 37 lanes do not perturb. At point level the
+            // sample is that continuum, so the driver's Newton needs d tau / d s_p too: two
+            // single-lane probes (run first; the base evaluation below leaves the trial state).
+            probe_opt_ = opt_;
+            probe_opt_.jacobian = ContactJacobian::analytical;
+            const double sp[2] = {s_p1, s_p2};
+            for (int b = 0; b < 2; ++b) {
+                const double h = 1.0e-6 * std::max(std::abs(sp[b]), 1.0);
+                double q[2] = {sp[0], sp[1]};
+                q[b] += h;
+                const auto plus = probe(t_N, dg1, dg2, q[0], q[1]);
+                q[b] -= 2.0 * h;
+                const auto minus = probe(t_N, dg1, dg2, q[0], q[1]);
+                for (int a = 0; a < 2; ++a) {
+                    r.dtau_dsp[a][b] = (plus[a] - minus[a]) / (2.0 * h);
+                }
+            }
+        }
+        points_.input(contact_col::t_N)[0] = t_N;
+        points_.input(contact_col::dg1)[0] = dg1;
+        points_.input(contact_col::dg2)[0] = dg2;
+        points_.input(contact_col::s_p1)[0] = s_p1;
+        points_.input(contact_col::s_p2)[0] = s_p2;
+        const auto t0 = Clock::now();
+        const ContactReport rep = engine_.update(points_, params_, opt_);
+        res_.interface_seconds += seconds_since(t0);
+        res_.counters.interface_evaluations += rep.constitutive_evaluations;
+        res_.counters.constitutive_evaluations += rep.constitutive_evaluations;
+        res_.counters.model_substeps += rep.model_substeps;
+        last_subincrements_ = rep.subincrements;
+        last_newton_ = rep.newton_iterations;
+        r.ok = rep.ok();
+        r.cause = rep.first_failed_cause;
+        last_band_clamped_ = rep.band_clamped > 0;
+        r.residual = points_.output(contact_col::residual)[0];
+        r.tau[0] = points_.output(contact_col::traction + 1)[0];
+        r.tau[1] = points_.output(contact_col::traction + 2)[0];
+        // Columns: slave e_1 (normal: d/d t_N with k_N = 1), master e_2, e_3 (+dg_T1, +dg_T2).
+        for (int a = 0; a < 2; ++a) {
+            r.dtau_dtN[a] = points_.jacobian(0, 1 + a, 0);
+            for (int b = 0; b < 2; ++b) {
+                r.dtau_dg[a][b] = points_.jacobian(0, 1 + a, 3 + 1 + b);
+            }
+        }
+        return r;
+    }
+
+    void commit(InterfaceTestResult& res) {
+        points_.commit();
+        res.counters.band_clamped_steps += last_band_clamped_ ? 1 : 0;
+        res.counters.subincrements += last_subincrements_;
+        res.counters.interface_newton_iterations += last_newton_;
+    }
+
+    void fill(InterfaceRow& row, double d_s0) const {
+        const double* y[NS];
+        for (int k = 0; k < NS; ++k) {
+            y[k] = points_.committed(k);
+        }
+        row.s_n = y[0][0];
+        row.s_p1 = y[1][0];
+        row.s_p2 = y[2][0];
+        row.e_interface = y[6][0];
+        row.eps_n = points_.committed(NS + contact_state::eps_n)[0];
+        row.eps_p1 = points_.committed(NS + contact_state::eps_p1)[0];
+        row.eps_p2 = points_.committed(NS + contact_state::eps_p2)[0];
+        row.gamma1 = points_.committed(NS + contact_state::gamma1)[0];
+        row.gamma2 = points_.committed(NS + contact_state::gamma2)[0];
+        row.band_thickness = d_s0 * (1.0 + row.eps_n);
+    }
+
+private:
+    std::array<double, 2> probe(double t_N, double dg1, double dg2, double s_p1, double s_p2) {
+        points_.input(contact_col::t_N)[0] = t_N;
+        points_.input(contact_col::dg1)[0] = dg1;
+        points_.input(contact_col::dg2)[0] = dg2;
+        points_.input(contact_col::s_p1)[0] = s_p1;
+        points_.input(contact_col::s_p2)[0] = s_p2;
+        const auto t0 = Clock::now();
+        const ContactReport rep = probe_engine_.update(points_, params_, probe_opt_);
+        res_.interface_seconds += seconds_since(t0);
+        res_.counters.interface_evaluations += rep.constitutive_evaluations;
+        res_.counters.constitutive_evaluations += rep.constitutive_evaluations;
+        return {points_.output(contact_col::traction + 1)[0],
+                points_.output(contact_col::traction + 2)[0]};
+    }
+
+    const typename Mi::Params& params_;
+    const ContactOptions& opt_;
+    ContactOptions probe_opt_;
+    ContactEngine<Mi> probe_engine_;
+    InterfaceTestResult& res_;
+    ContactPoints<Mi> points_;
+    ContactEngine<Mi> engine_;
+    double last_subincrements_ = 0.0;
+    bool last_band_clamped_ = false;
+    double last_newton_ = 0.0;
+};
+
+// Coulomb penalty friction: exact return mapping with its analytical derivatives.
+class CoulombInterface {
+public:
+    CoulombInterface(const CoulombParams& p, double tau1, double tau2) : p_(p) {
+        tau_[0] = tau1;
+        tau_[1] = tau2;
+    }
+    CoulombInterface(const CoulombParams& p, double tau1, double tau2, InterfaceTestResult& res)
+        : CoulombInterface(p, tau1, tau2) {
+        res_ = &res;
+    }
+    InterfaceResponse evaluate(double t_N, double dg1, double dg2, double, double) {
+        const auto t0 = Clock::now();
+        const auto c = coulomb_update<double>(p_, t_N, tau_[0], tau_[1], dg1, dg2);
+        if (res_) {
+            res_->interface_seconds += seconds_since(t0);
+            res_->counters.interface_evaluations += 1.0;
+            res_->counters.constitutive_evaluations += 1.0;
+        }
+        InterfaceResponse r;
+        r.tau[0] = trial_[0] = c.tau1;
+        r.tau[1] = trial_[1] = c.tau2;
+        for (int a = 0; a < 2; ++a) {
+            r.dtau_dtN[a] = c.dtau_dtN[a];
+            for (int b = 0; b < 2; ++b) {
+                r.dtau_dg[a][b] = c.dtau_ddg[a][b];
+            }
+        }
+        return r;
+    }
+    void commit(InterfaceTestResult&) {
+        tau_[0] = trial_[0];
+        tau_[1] = trial_[1];
+    }
+    void fill(InterfaceRow& row, double) const {
+        row.s_n = row.t_n;
+        row.band_thickness = 0.0;
+    }
+
+private:
+    CoulombParams p_;
+    InterfaceTestResult* res_ = nullptr;
+    double tau_[2] = {0.0, 0.0};
+    double trial_[2] = {0.0, 0.0};
+};
+
+} // namespace ifsim::detail
