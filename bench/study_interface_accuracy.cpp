@@ -1,5 +1,5 @@
 // Accuracy against cost of the interface knobs (design.md, "Accuracy and its cost"), measured
-// on the paper's §5 simple interface shear tests at point level (engine/interface_test.hpp):
+// on the paper's §5 simple interface shear tests at point level (engine/interface_test_driver.hpp):
 //
 //   mono-novel   monotonic CNL 100 kPa, novel formulation (paper Fig. 6)
 //   mono-stutz   the same with the formulation of Stutz et al.
@@ -36,7 +36,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
-#include "engine/interface_test.hpp"
+#include "engine/interface_test_driver.hpp"
 #include "kernels/parameter_sets.hpp"
 #include "kernels/simd.hpp"
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/element_test.hpp"
+#include "engine/element_test_driver.hpp"
 #include "io/history_writer.hpp"
 
 namespace ifsim::io {

@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <filesystem>
 
-#include "engine/element_test.hpp"
+#include "engine/element_test_driver.hpp"
 #include "io/element_test_scene.hpp"
 #include "io/progress.hpp"
 

@@ -7,7 +7,7 @@
 
 #include <toml++/toml.h>
 
-#include "engine/element_test.hpp"
+#include "engine/element_test_driver.hpp"
 #include "io/material_parameters.hpp"
 
 namespace ifsim::io {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/interface_test.hpp"
+#include "engine/interface_test_driver.hpp"
 #include "io/history_writer.hpp"
 
 namespace ifsim::io {

@@ -1,12 +1,12 @@
 #pragma once
-// Runs an interface-test scene with the engine's driver (engine/interface_test.hpp), streaming
+// Runs an interface-test scene with the engine's driver (engine/interface_test_driver.hpp), streaming
 // rows into history.csv and showing progress, and fills the run's summary. Writing rows happens
 // inside the driver's time; it is measured here so the summary reports it as output time.
 
 #include <cstddef>
 #include <filesystem>
 
-#include "engine/interface_test.hpp"
+#include "engine/interface_test_driver.hpp"
 #include "io/interface_test_scene.hpp"
 #include "io/progress.hpp"
 #include "io/summary_writer.hpp"

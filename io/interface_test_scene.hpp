@@ -9,7 +9,7 @@
 
 #include <toml++/toml.h>
 
-#include "engine/interface_test.hpp"
+#include "engine/interface_test_driver.hpp"
 #include "io/interface_initial_stress.hpp"
 #include "io/material_parameters.hpp"
 
