@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "engine/coulomb_contact.hpp"
-#include "fem/contact_assembly.hpp"
+#include "fem/mortar_contact.hpp"
 #include "fem/phase_timer.hpp"
 
 namespace ifsim::fem {
@@ -80,9 +80,9 @@ std::size_t slave_point_count(const Mesh& mesh, const ContactPairSpec& spec) {
 
 std::unique_ptr<MortarKinematics> make_kinematics(const Mesh& mesh, const ContactPairSpec& spec) {
     if (mesh.dim() == 2) {
-        return std::make_unique<MortarContact2D>(mesh, spec.slave_faces, spec.master_faces);
+        return std::make_unique<MortarContact<2>>(mesh, spec.slave_faces, spec.master_faces);
     }
-    return make_mortar_3d(mesh, spec.slave_faces, spec.master_faces);
+    return std::make_unique<MortarContact<3>>(mesh, spec.slave_faces, spec.master_faces);
 }
 
 // What every pair shares: kinematics, engine frames, the penalty with its offsets, and the

@@ -28,7 +28,7 @@
 
 #include "engine/contact_update.hpp"
 #include "engine/material_choice.hpp"
-#include "fem/contact_kinematics.hpp"
+#include "fem/mortar_kinematics.hpp"
 #include "fem/mesh.hpp"
 #include "fem/stress_extrapolation.hpp"
 #include "kernels/coulomb.hpp"

@@ -38,19 +38,19 @@ Vec3 unit(const Vec3& a) {
 } // namespace
 
 // Position, tangents and smoothed normal of a face with their xi-derivatives.
-struct ContactSurface3D::Local {
+struct MortarSurface3D::Local {
     std::array<double, 4> N{};
     Vec3 x{}, a1{}, a2{}, a12{}; // x, x_xi1, x_xi2, x_xi1xi2 (bilinear: x_xi1xi1 = 0)
     Vec3 n{}, n1{}, n2{};        // smoothed unit normal and its xi-derivatives
 };
 
-ContactSurface3D::ContactSurface3D(const Mesh& mesh, const std::string& face_set) {
+MortarSurface3D::MortarSurface3D(const Mesh& mesh, const std::string& face_set) {
     if (mesh.dim() != 3) {
-        throw std::invalid_argument("ContactSurface3D: the mesh must be 3D (hex8)");
+        throw std::invalid_argument("MortarSurface3D: the mesh must be 3D (hex8)");
     }
     const auto& faces = mesh.face_set(face_set);
     if (faces.empty()) {
-        throw std::invalid_argument("ContactSurface3D: face set '" + face_set + "' is empty");
+        throw std::invalid_argument("MortarSurface3D: face set '" + face_set + "' is empty");
     }
     surface_index_.assign(static_cast<std::size_t>(mesh.n_nodes()), -1);
     int n_surface = 0;
@@ -94,12 +94,12 @@ ContactSurface3D::ContactSurface3D(const Mesh& mesh, const std::string& face_set
     set_configuration(mesh, nullptr);
 }
 
-Vec3 ContactSurface3D::node_x(int node) const {
+Vec3 MortarSurface3D::node_x(int node) const {
     const auto i = static_cast<std::size_t>(3 * node);
     return {x_[i], x_[i + 1], x_[i + 2]};
 }
 
-void ContactSurface3D::set_configuration(const Mesh& mesh, const std::vector<double>* u) {
+void MortarSurface3D::set_configuration(const Mesh& mesh, const std::vector<double>* u) {
     x_ = mesh.coordinates;
     if (u != nullptr) {
         for (std::size_t i = 0; i < x_.size(); ++i) {
@@ -129,7 +129,7 @@ void ContactSurface3D::set_configuration(const Mesh& mesh, const std::vector<dou
     }
 }
 
-ContactSurface3D::Local ContactSurface3D::evaluate(int f, const V2& xi) const {
+MortarSurface3D::Local MortarSurface3D::evaluate(int f, const V2& xi) const {
     Local L;
     Vec3 m{}, m1{}, m2{};
     const auto fi = static_cast<std::size_t>(f);
@@ -163,11 +163,11 @@ ContactSurface3D::Local ContactSurface3D::evaluate(int f, const V2& xi) const {
     return L;
 }
 
-Vec3 ContactSurface3D::smoothed_normal(int f, const V2& xi) const {
+Vec3 MortarSurface3D::smoothed_normal(int f, const V2& xi) const {
     return evaluate(f, xi).n;
 }
 
-int ContactSurface3D::nearest_face(const Vec3& p, V2& xi) const {
+int MortarSurface3D::nearest_face(const Vec3& p, V2& xi) const {
     // Sampled distance (3x3 interior points per face): only a start for the walk.
     double best = std::numeric_limits<double>::max();
     int face = 0;
@@ -193,7 +193,7 @@ int ContactSurface3D::nearest_face(const Vec3& p, V2& xi) const {
 }
 
 // The point xi on edge k of face f expressed in the coordinates of the neighbour g.
-V2 ContactSurface3D::across(int f, int k, const V2& xi, int g) const {
+V2 MortarSurface3D::across(int f, int k, const V2& xi, int g) const {
     const auto& F = faces_[static_cast<std::size_t>(f)];
     const auto& G = faces_[static_cast<std::size_t>(g)];
     const std::size_t k0 = static_cast<std::size_t>(k);
@@ -222,7 +222,7 @@ V2 ContactSurface3D::across(int f, int k, const V2& xi, int g) const {
 // the smoothed normal (Eq. A17). Where that Jacobian is not positive (far from a strongly
 // curved surface) the Gauss-Newton matrix (P x_xia) . (P x_xib) keeps the step a descent one.
 // At most half a face per step.
-std::array<double, 2> ContactSurface3D::newton_step(const Local& L, const Vec3& p,
+std::array<double, 2> MortarSurface3D::newton_step(const Local& L, const Vec3& p,
                                                     bool& converged) {
     constexpr double tol = 1e-13;
     const Vec3 g = axpy(-1.0, p, L.x);
@@ -262,7 +262,7 @@ std::array<double, 2> ContactSurface3D::newton_step(const Local& L, const Vec3& 
     return d;
 }
 
-SurfaceProjection3D ContactSurface3D::project(const Vec3& p, int start) const {
+SurfaceProjection3D MortarSurface3D::project(const Vec3& p, int start) const {
     SurfaceProjection3D r;
     V2 xi{0.0, 0.0};
     int f = start;
@@ -362,7 +362,7 @@ SurfaceProjection3D ContactSurface3D::project(const Vec3& p, int start) const {
     return r;
 }
 
-std::vector<SlavePoint3D> ContactSurface3D::integration_points() const {
+std::vector<SlavePoint3D> MortarSurface3D::integration_points() const {
     std::vector<SlavePoint3D> pts;
     pts.reserve(4 * faces_.size());
     const double g = 1.0 / std::sqrt(3.0);

@@ -44,10 +44,10 @@ struct SlavePoint3D {
     Vec3 natural{}; // natural coordinates in the face's hex8 element
 };
 
-class ContactSurface3D {
+class MortarSurface3D {
 public:
     // Faces of the face set; throws std::invalid_argument for a 2D mesh or an empty set.
-    ContactSurface3D(const Mesh& mesh, const std::string& face_set);
+    MortarSurface3D(const Mesh& mesh, const std::string& face_set);
 
     int n_faces() const { return static_cast<int>(faces_.size()); }
     const std::array<int, 4>& face_nodes_of(int f) const {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <map>
 
-#include "fem/contact_assembly.hpp"
+#include "fem/mortar_contact.hpp"
 
 namespace {
 
@@ -44,31 +44,31 @@ struct Law {
     double k_N = 1e5;
     double k_T = 5e4;
     double mu = 0.4;
-    std::vector<PointTraction> operator()(const MortarContact2D& c) const {
-        std::vector<PointTraction> out(c.points().size());
+    std::vector<ContactTraction> operator()(const MortarContact<2>& c) const {
+        std::vector<ContactTraction> out(c.n_points());
         for (std::size_t i = 0; i < out.size(); ++i) {
-            const auto& p = c.points()[i];
-            if (!p.master.in_contact || p.g_N >= 0.0) {
+            const ContactKinematics& p = c.point(i);
+            if (!p.active || p.g_N >= 0.0) {
                 continue;
             }
             auto& t = out[i];
-            const auto& n = p.master.normal;
-            const auto& tg = p.master.tangent;
+            const auto& n = p.n;
+            const auto& tg = p.t1;
             t.t_N = k_N * p.g_N;
-            const double trial = k_T * p.dg_T;
+            const double trial = k_T * p.dg_T[0];
             for (std::size_t d = 0; d < 2; ++d) { // g_N: slave +n, master -n; dg_T: master +t
                 t.jac[0][d] = k_N * n[d];
                 t.jac[0][2 + d] = -k_N * n[d];
             }
             if (std::abs(trial) <= -mu * t.t_N) {
-                t.tau = trial;
+                t.tau[0] = trial;
                 for (std::size_t d = 0; d < 2; ++d) {
                     t.jac[1][d] = -k_T * tg[d];
                     t.jac[1][2 + d] = k_T * tg[d];
                 }
             } else {
                 const double s = trial > 0.0 ? 1.0 : -1.0;
-                t.tau = -mu * t.t_N * s;
+                t.tau[0] = -mu * t.t_N * s;
                 for (std::size_t c4 = 0; c4 < 4; ++c4) {
                     t.jac[1][c4] = -mu * s * t.jac[0][c4];
                 }
@@ -78,7 +78,7 @@ struct Law {
     }
 };
 
-std::vector<double> forces(MortarContact2D& c, const Law& law, const std::vector<double>& du,
+std::vector<double> forces(MortarContact<2>& c, const Law& law, const std::vector<double>& du,
                            std::vector<ContactTriplet>* K) {
     c.update_gaps(du);
     const auto tr = law(c);
@@ -98,7 +98,7 @@ double sum_dir(const std::vector<double>& f, const std::vector<int>& nodes, int 
 TEST(ContactAssembly, UniformPressureOnNonMatchingMeshes) {
     const double pen = 1e-3;
     const Mesh m = two_bodies({0, 0.7, 1.5, 2.2, 3.0}, {0.3, 0.9, 1.8, 2.6}, pen);
-    MortarContact2D c(m, "slave_bottom", "master_top");
+    MortarContact<2> c(m, "slave_bottom", "master_top");
     const std::vector<double> u(m.coordinates.size(), 0.0);
     EXPECT_TRUE(c.pair(m, u));
     EXPECT_FALSE(c.pair(m, u)); // same configuration, same pairing
@@ -129,7 +129,7 @@ TEST(ContactAssembly, UniformPressureOnNonMatchingMeshes) {
     EXPECT_NEAR(moment, 0.0, 1e-9 * p);
 }
 
-void check_tangent(const Mesh& m, MortarContact2D& c, const Law& law,
+void check_tangent(const Mesh& m, MortarContact<2>& c, const Law& law,
                    const std::vector<double>& du) {
     std::vector<ContactTriplet> K;
     const auto f0 = forces(c, law, du, &K);
@@ -168,7 +168,7 @@ void check_tangent(const Mesh& m, MortarContact2D& c, const Law& law,
 
 TEST(ContactAssembly, TangentMatchesFiniteDifferencesStickAndSlip) {
     const Mesh m = two_bodies({0, 0.7, 1.5, 2.2, 3.0}, {0.3, 0.9, 1.8, 2.6}, 1e-3);
-    MortarContact2D c(m, "slave_bottom", "master_top");
+    MortarContact<2> c(m, "slave_bottom", "master_top");
     std::vector<double> u(m.coordinates.size(), 0.0);
     c.pair(m, u);
     Law law;
@@ -186,8 +186,8 @@ TEST(ContactAssembly, TangentMatchesFiniteDifferencesStickAndSlip) {
     c.update_gaps(du);
     const auto tr = law(c);
     for (std::size_t i = 0; i < tr.size(); ++i) {
-        if (c.points()[i].master.in_contact) {
-            EXPECT_NEAR(std::abs(tr[i].tau), -law.mu * tr[i].t_N, 1e-12 * std::abs(tr[i].t_N));
+        if (c.point(i).active) {
+            EXPECT_NEAR(std::abs(tr[i].tau[0]), -law.mu * tr[i].t_N, 1e-12 * std::abs(tr[i].t_N));
         }
     }
     check_tangent(m, c, law, du);
@@ -199,7 +199,7 @@ TEST(ContactAssembly, BlockSlidesOverSeveralMasterEdges) {
     // the normal force on both sides while sliding, and the block leaves the plate at the end.
     const double pen = 1e-3;
     const Mesh m = two_bodies({0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0}, {0.1, 0.9}, pen);
-    MortarContact2D c(m, "slave_bottom", "master_top");
+    MortarContact<2> c(m, "slave_bottom", "master_top");
     std::vector<double> u(m.coordinates.size(), 0.0);
     Law law;
     const auto slave = m.nodes_of_faces("slave_bottom");
@@ -218,10 +218,10 @@ TEST(ContactAssembly, BlockSlidesOverSeveralMasterEdges) {
         du[static_cast<std::size_t>(2 * (m.n_nodes() - 2))] = 0.3;
         const auto f = forces(c, law, du, nullptr);
         int active = 0;
-        for (const auto& p : c.points()) {
-            if (p.master.in_contact) {
+        for (std::size_t i = 0; i < c.n_points(); ++i) {
+            if (c.point(i).active) {
                 ++active;
-                edges_seen.push_back(p.master.edge);
+                edges_seen.push_back(c.master_segment(i));
             }
         }
         if (active == 2) { // fully on the plate
@@ -245,8 +245,8 @@ TEST(ContactAssembly, BlockSlidesOverSeveralMasterEdges) {
     EXPECT_GE(full_steps, 5);
     // Finally beyond the plate's natural border: no point in contact.
     c.pair(m, u);
-    for (const auto& p : c.points()) {
-        EXPECT_FALSE(p.master.in_contact);
+    for (std::size_t i = 0; i < c.n_points(); ++i) {
+        EXPECT_FALSE(c.point(i).active);
     }
 }
 

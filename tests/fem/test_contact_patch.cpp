@@ -1,6 +1,6 @@
 // Contact patch test (paper Appendix A): two linear elastic blocks in plane strain, pressed
 // together by a uniform pressure through a penalty contact surface with non-matching meshes;
-// Newton with the contact tangent of MortarContact2D. Frictionless; the exact solution is a
+// Newton with the contact tangent of MortarContact<2>. Frictionless; the exact solution is a
 // uniform uniaxial stress sigma_yy = -p in both blocks and a uniform penetration p / k_N.
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@
 
 #include <Eigen/Dense>
 
-#include "fem/contact_assembly.hpp"
 #include "fem/element_kernels.hpp"
+#include "fem/mortar_contact.hpp"
 
 namespace {
 
@@ -106,25 +106,25 @@ Result press(const std::vector<double>& x_master, const std::vector<double>& x_s
             }
         }
     }
-    MortarContact2D contact(m, "slave", "master");
+    MortarContact<2> contact(m, "slave", "master");
     std::vector<double> u(static_cast<std::size_t>(ndof), 0.0);
     contact.pair(m, u); // one increment: the pairing of the start configuration
-    auto law = [&](std::vector<PointTraction>& tr) {
-        tr.assign(contact.points().size(), {});
+    auto law = [&](std::vector<ContactTraction>& tr) {
+        tr.assign(contact.n_points(), {});
         for (std::size_t i = 0; i < tr.size(); ++i) {
-            const auto& pt = contact.points()[i];
-            if (!pt.master.in_contact || pt.g_N > 0.0) {
+            const ContactKinematics& pt = contact.point(i);
+            if (!pt.active || pt.g_N > 0.0) {
                 continue; // open
             }
             tr[i].t_N = k_N * pt.g_N;
             for (std::size_t d = 0; d < 2; ++d) {
-                tr[i].jac[0][d] = k_N * pt.master.normal[d];
-                tr[i].jac[0][2 + d] = -k_N * pt.master.normal[d];
+                tr[i].jac[0][d] = k_N * pt.n[d];
+                tr[i].jac[0][2 + d] = -k_N * pt.n[d];
             }
         }
     };
     Result res;
-    std::vector<PointTraction> tr;
+    std::vector<ContactTraction> tr;
     for (int it = 0; it < 10; ++it) {
         contact.update_gaps(u); // the increment is the whole displacement here
         law(tr);
@@ -172,8 +172,9 @@ Result press(const std::vector<double>& x_master, const std::vector<double>& x_s
         }
     }
     int n = 0;
-    for (const auto& pt : contact.points()) {
-        if (pt.master.in_contact) {
+    for (std::size_t i = 0; i < contact.n_points(); ++i) {
+        const ContactKinematics& pt = contact.point(i);
+        if (pt.active) {
             res.penetration -= pt.g_N;
             ++n;
         }

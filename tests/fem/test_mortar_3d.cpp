@@ -15,8 +15,8 @@
 
 #include <Eigen/Dense>
 
-#include "fem/contact_assembly_3d.hpp"
 #include "fem/element_kernels.hpp"
+#include "fem/mortar_contact.hpp"
 #include "fem/shape_functions.hpp"
 #include "fem/structured_mesh.hpp"
 
@@ -83,7 +83,7 @@ Mesh body_below(const std::vector<double>& xs, const std::vector<double>& ys,
 
 TEST(MortarSurface3D, FlatProjectionFromAnyStartFace) {
     const Mesh m = box_mesh({3.0, 2.0, 1.0, 3, 2, 1, {0.0, 0.0, -1.0}});
-    ContactSurface3D s(m, "top");
+    MortarSurface3D s(m, "top");
     ASSERT_EQ(s.n_faces(), 6);
     // Inside a face, above a node, above an edge, penetrating.
     const std::vector<Vec3> pts{
@@ -113,7 +113,7 @@ TEST(MortarSurface3D, FlatProjectionFromAnyStartFace) {
 
 TEST(MortarSurface3D, FreeBorderAndCorners) {
     const Mesh m = box_mesh({3.0, 2.0, 1.0, 3, 2, 1, {0.0, 0.0, -1.0}});
-    ContactSurface3D s(m, "top");
+    MortarSurface3D s(m, "top");
     for (int start = -1; start < s.n_faces(); ++start) {
         EXPECT_FALSE(s.project({3.1, 1.0, 0.1}, start).in_contact);
         EXPECT_FALSE(s.project({1.5, -0.01, 0.1}, start).in_contact);
@@ -136,7 +136,7 @@ TEST(MortarSurface3D, RidgeIsSmoothed) {
     // projection onto either slope; the averaged nodal normal is vertical on the ridge.
     const Mesh m =
         body_below({0, 1, 2}, {0, 1, 2}, [](double x, double) { return 1.0 - std::abs(x - 1.0); });
-    ContactSurface3D s(m, "top");
+    MortarSurface3D s(m, "top");
     for (int start = -1; start < s.n_faces(); ++start) {
         for (const double y : {0.6, 1.0, 2.0}) { // above the edge, a ridge node, a border node
             const auto p = s.project({1.0, y, 2.0}, start);
@@ -197,7 +197,7 @@ TEST(MortarSurface3D, PeakAndValleyProjectOntoNodeAndEdge) {
     // Peak: four non-planar faces meet at (1, 1, 1); a point above it projects onto the node.
     const Mesh peak = body_below(
         {0, 1, 2}, {0, 1, 2}, [](double x, double y) { return x == 1.0 && y == 1.0 ? 1.0 : 0.0; });
-    ContactSurface3D s(peak, "top");
+    MortarSurface3D s(peak, "top");
     for (int start = -1; start < s.n_faces(); ++start) {
         const auto p = s.project({1.0, 1.0, 3.0}, start);
         ASSERT_TRUE(p.in_contact);
@@ -210,7 +210,7 @@ TEST(MortarSurface3D, PeakAndValleyProjectOntoNodeAndEdge) {
     // Concave valley z = |x - 1|: above (and below) the valley edge onto the edge.
     const Mesh valley =
         body_below({0, 1, 2}, {0, 1, 2}, [](double x, double) { return std::abs(x - 1.0); });
-    ContactSurface3D v(valley, "top");
+    MortarSurface3D v(valley, "top");
     for (int start = -1; start < v.n_faces(); ++start) {
         for (const double z : {0.5, -0.2}) {
             const auto p = v.project({1.0, 0.6, z}, start);
@@ -256,7 +256,7 @@ TEST(MortarSurface3D, CylinderBySymmetryAcrossManyFaces) {
         }
     }
     m.validate();
-    ContactSurface3D s(m, "outer");
+    MortarSurface3D s(m, "outer");
     for (int i = 1; i < n; ++i) {
         const double a = a0 + i * da;
         for (const double y : {0.5, 1.0}) {
@@ -299,7 +299,7 @@ TEST(MortarSurface3D, WavySurfaceSameProjectionFromEveryStartFace) {
             0.08 * std::sin(2.1 * m.coordinate(a, 0) + 1.3 * m.coordinate(a, 1)) +
             0.05 * std::cos(5.0 * m.coordinate(a, 1));
     }
-    ContactSurface3D s(m, "top");
+    MortarSurface3D s(m, "top");
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> ux(0.02, 2.98), uy(0.02, 1.98), uz(-0.3, 0.3);
     for (int k = 0; k < 40; ++k) {
@@ -325,7 +325,7 @@ TEST(MortarSurface3D, WavySurfaceSameProjectionFromEveryStartFace) {
 TEST(MortarSurface3D, SlaveIntegrationPointsAndDisplacedConfiguration) {
     Mesh m = box_mesh({2.0, 3.0, 1.0, 2, 3, 2});
     {
-        ContactSurface3D s(m, "bottom");
+        MortarSurface3D s(m, "bottom");
         double area = 0.0;
         for (const auto& g : s.integration_points()) {
             area += g.weight_j;
@@ -338,7 +338,7 @@ TEST(MortarSurface3D, SlaveIntegrationPointsAndDisplacedConfiguration) {
         m.coordinates[i] += 0.08 * std::sin(1.7 * static_cast<double>(i));
     }
     for (const char* set : {"bottom", "top", "left", "right", "front", "back"}) {
-        ContactSurface3D s(m, set);
+        MortarSurface3D s(m, set);
         for (const auto& g : s.integration_points()) {
             double N[8];
             Shape<ElementType::hex8>::values(g.natural.data(), N);
@@ -357,7 +357,7 @@ TEST(MortarSurface3D, SlaveIntegrationPointsAndDisplacedConfiguration) {
     }
     // Displaced master: the top of a box translated by u; gaps and Eq. A13 increments.
     const Mesh b = box_mesh({2.0, 2.0, 1.0, 2, 2, 1, {0.0, 0.0, -1.0}});
-    ContactSurface3D s(b, "top");
+    MortarSurface3D s(b, "top");
     std::vector<double> u(b.coordinates.size());
     for (int a = 0; a < b.n_nodes(); ++a) {
         u[static_cast<std::size_t>(3 * a)] = 0.05;
@@ -416,7 +416,7 @@ struct Law {
     double k_T = 5e4;
     double mu = 0.4;
     bool coulomb = false;
-    std::vector<ContactTraction> operator()(const MortarContact3D& c) const {
+    std::vector<ContactTraction> operator()(const MortarContact<3>& c) const {
         std::vector<ContactTraction> out(c.n_points());
         for (std::size_t i = 0; i < out.size(); ++i) {
             const ContactKinematics& p = c.point(i);
@@ -468,7 +468,7 @@ struct Law {
     }
 };
 
-std::vector<double> forces(MortarContact3D& c, const Law& law, const std::vector<double>& du,
+std::vector<double> forces(MortarContact<3>& c, const Law& law, const std::vector<double>& du,
                            std::vector<ContactTriplet>* K) {
     c.update_gaps(du);
     const auto tr = law(c);
@@ -510,7 +510,7 @@ TEST(MortarContact3D, UniformTractionsOnNonMatchingMeshes) {
     const double pen = 1e-3;
     const Mesh m = two_boxes({3.0, 2.0, 1.0, 3, 2, 1, {0.0, 0.0, -1.0}},
                              {2.4, 1.5, 1.0, 4, 3, 1, {0.2, 0.3, -pen}});
-    MortarContact3D c(m, "s_bottom", "m_top");
+    MortarContact<3> c(m, "s_bottom", "m_top");
     const std::vector<double> u(m.coordinates.size(), 0.0);
     EXPECT_TRUE(c.pair(m, u));
     EXPECT_FALSE(c.pair(m, u)); // same configuration, same pairing
@@ -578,7 +578,7 @@ TEST(MortarContact3D, UniformTractionsOnNonMatchingMeshes) {
     EXPECT_NEAR(Gm[1], -12.0 * A, 1e-12 * 30.0 * A);
 }
 
-void check_tangent(const Mesh& m, MortarContact3D& c, const Law& law,
+void check_tangent(const Mesh& m, MortarContact<3>& c, const Law& law,
                    const std::vector<double>& du) {
     std::vector<ContactTriplet> K;
     forces(c, law, du, &K);
@@ -622,7 +622,7 @@ TEST(MortarContact3D, TangentMatchesFiniteDifferencesPenaltyAndSlip) {
         m.coordinates[static_cast<std::size_t>(3 * a + 2)] +=
             0.01 * std::sin(2.1 * m.coordinate(a, 0) + 1.3 * m.coordinate(a, 1));
     }
-    MortarContact3D c(m, "s_bottom", "m_top");
+    MortarContact<3> c(m, "s_bottom", "m_top");
     const std::vector<double> u(m.coordinates.size(), 0.0);
     c.pair(m, u);
     const int n_master = 4 * 3 * 2;
@@ -716,7 +716,7 @@ PatchResult press(int mx, int my, int sx, int sy) {
             }
         }
     }
-    MortarContact3D contact(m, "s_bottom", "m_top");
+    MortarContact<3> contact(m, "s_bottom", "m_top");
     std::vector<double> u(static_cast<std::size_t>(ndof), 0.0);
     contact.pair(m, u); // one increment: the pairing of the start configuration
     Law law;
@@ -816,7 +816,7 @@ TEST(MortarContact3D, BlockSlidesOverSeveralMasterFaces) {
     const double pen = 1e-3;
     const Mesh m = two_boxes({3.0, 2.0, 0.5, 6, 4, 1, {0.0, 0.0, -0.5}},
                              {0.8, 0.8, 0.5, 1, 1, 1, {0.05, 0.3, -pen}});
-    MortarContact3D c(m, "s_bottom", "m_top");
+    MortarContact<3> c(m, "s_bottom", "m_top");
     std::vector<double> u(m.coordinates.size(), 0.0);
     Law law;
     law.coulomb = true;
@@ -835,7 +835,7 @@ TEST(MortarContact3D, BlockSlidesOverSeveralMasterFaces) {
         for (std::size_t i = 0; i < c.n_points(); ++i) {
             active += c.point(i).active ? 1 : 0;
             if (c.point(i).active) {
-                faces_seen.insert(c.points()[i].master.face);
+                faces_seen.insert(c.master_segment(i));
             }
         }
         std::vector<double> du(u.size(), 0.0); // the whole block slides

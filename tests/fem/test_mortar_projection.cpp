@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "fem/mortar_surface.hpp"
+#include "fem/mortar_surface_2d.hpp"
 
 namespace {
 
@@ -32,7 +32,7 @@ Mesh body_below(const std::vector<std::array<double, 2>>& top) {
 
 TEST(MortarProjection, StraightMasterAcrossEdgesAndGaps) {
     const Mesh m = body_below({{0, 0}, {1, 0}, {2, 0}, {3, 0}});
-    ContactSurface2D s(m, "top");
+    MortarSurface2D s(m, "top");
     ASSERT_EQ(s.n_edges(), 3);
     for (int start = -1; start < 3; ++start) { // any start edge walks to the same point
         const auto p = s.project({1.3, 0.2}, start);
@@ -55,7 +55,7 @@ TEST(MortarProjection, StraightMasterAcrossEdgesAndGaps) {
 
 TEST(MortarProjection, NaturalBorders) {
     const Mesh m = body_below({{0, 0}, {1, 0}, {2, 0}});
-    ContactSurface2D s(m, "top");
+    MortarSurface2D s(m, "top");
     EXPECT_FALSE(s.project({2.3, 0.1}).in_contact);
     EXPECT_FALSE(s.project({-0.01, 0.1}).in_contact);
     EXPECT_FALSE(s.project({2.3, 0.1}, 0).in_contact); // walking from the far edge
@@ -69,7 +69,7 @@ TEST(MortarProjection, ConvexKinkIsSmoothed) {
     // A peak at (1, 1): without smoothing a point above the peak has no orthogonal
     // projection onto either edge; the averaged nodal tangent is horizontal there.
     const Mesh m = body_below({{0, 0}, {1, 1}, {2, 0}});
-    ContactSurface2D s(m, "top");
+    MortarSurface2D s(m, "top");
     const auto p = s.project({1.0, 2.0});
     ASSERT_TRUE(p.in_contact);
     EXPECT_NEAR(p.x[0], 1.0, 1e-12);
@@ -99,7 +99,7 @@ TEST(MortarProjection, ConvexKinkIsSmoothed) {
 
 TEST(MortarProjection, ConcaveKinkProjectsOntoNode) {
     const Mesh m = body_below({{0, 1}, {1, 0}, {2, 1}});
-    ContactSurface2D s(m, "top");
+    MortarSurface2D s(m, "top");
     for (int start = -1; start < 2; ++start) {
         const auto p = s.project({1.0, 0.5}, start);
         ASSERT_TRUE(p.in_contact);
@@ -121,7 +121,7 @@ TEST(MortarProjection, CurvedPolylineBySymmetry) {
         top.push_back({std::cos(a0 + i * da), std::sin(a0 + i * da)});
     }
     const Mesh m = body_below(top);
-    ContactSurface2D s(m, "top");
+    MortarSurface2D s(m, "top");
     for (int i = 1; i < n; ++i) {
         const double a = a0 + i * da;
         const auto p = s.project({1.5 * std::cos(a), 1.5 * std::sin(a)}, 0);
@@ -145,7 +145,7 @@ TEST(MortarProjection, CurvedPolylineBySymmetry) {
 
 TEST(MortarProjection, DisplacedConfigurationAndTangentialIncrement) {
     const Mesh m = body_below({{0, 0}, {1, 0}, {2, 0}});
-    ContactSurface2D s(m, "top");
+    MortarSurface2D s(m, "top");
     // Displaced: the master surface lifted by 0.1 and shifted right by 0.05.
     std::vector<double> u(m.coordinates.size(), 0.0);
     for (int a = 0; a < m.n_nodes(); ++a) {

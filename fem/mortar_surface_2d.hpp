@@ -41,10 +41,10 @@ struct SlavePoint {
     std::array<double, 2> x{};
 };
 
-class ContactSurface2D {
+class MortarSurface2D {
 public:
     // Edges of the face set; throws std::invalid_argument for a 3D mesh or an empty set.
-    ContactSurface2D(const Mesh& mesh, const std::string& face_set);
+    MortarSurface2D(const Mesh& mesh, const std::string& face_set);
 
     int n_edges() const { return static_cast<int>(edges_.size()); }
     const std::array<int, 2>& edge_nodes(int e) const {

@@ -78,8 +78,4 @@ public:
     virtual const ProjectionCounters& projection_counters() const = 0;
 };
 
-// The 3D (hex8) kinematics of two face sets (fem/contact_assembly_3d.hpp).
-std::unique_ptr<MortarKinematics> make_mortar_3d(const Mesh& mesh, const std::string& slave_faces,
-                                                 const std::string& master_faces);
-
 } // namespace ifsim::fem

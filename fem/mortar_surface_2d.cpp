@@ -1,4 +1,4 @@
-#include "fem/mortar_surface.hpp"
+#include "fem/mortar_surface_2d.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,13 +23,13 @@ double dot(const V2& a, const V2& b) {
 
 } // namespace
 
-ContactSurface2D::ContactSurface2D(const Mesh& mesh, const std::string& face_set) {
+MortarSurface2D::MortarSurface2D(const Mesh& mesh, const std::string& face_set) {
     if (mesh.dim() != 2) {
-        throw std::invalid_argument("ContactSurface2D: the mesh must be 2D (quad4)");
+        throw std::invalid_argument("MortarSurface2D: the mesh must be 2D (quad4)");
     }
     const auto& faces = mesh.face_set(face_set);
     if (faces.empty()) {
-        throw std::invalid_argument("ContactSurface2D: face set '" + face_set + "' is empty");
+        throw std::invalid_argument("MortarSurface2D: face set '" + face_set + "' is empty");
     }
     for (const FaceRef& f : faces) {
         const auto local = face_nodes(mesh.type, f.local_face);
@@ -54,7 +54,7 @@ ContactSurface2D::ContactSurface2D(const Mesh& mesh, const std::string& face_set
     set_configuration(mesh, nullptr);
 }
 
-void ContactSurface2D::set_configuration(const Mesh& mesh, const std::vector<double>* u) {
+void MortarSurface2D::set_configuration(const Mesh& mesh, const std::vector<double>* u) {
     x_ = mesh.coordinates;
     if (u != nullptr) {
         for (std::size_t i = 0; i < x_.size(); ++i) {
@@ -63,13 +63,13 @@ void ContactSurface2D::set_configuration(const Mesh& mesh, const std::vector<dou
     }
 }
 
-V2 ContactSurface2D::node_x(int node) const {
+V2 MortarSurface2D::node_x(int node) const {
     return {x_[static_cast<std::size_t>(2 * node)], x_[static_cast<std::size_t>(2 * node + 1)]};
 }
 
 // Averaged unit tangent at end `end` (0 start, 1 end) of edge e: the mean of the unit tangents
 // of the edges sharing the node (one edge at a chain end).
-V2 ContactSurface2D::nodal_tangent(int e, int end) const {
+V2 MortarSurface2D::nodal_tangent(int e, int end) const {
     const auto& n = edges_[static_cast<std::size_t>(e)];
     V2 t = unit({node_x(n[1])[0] - node_x(n[0])[0], node_x(n[1])[1] - node_x(n[0])[1]});
     const int other =
@@ -82,7 +82,7 @@ V2 ContactSurface2D::nodal_tangent(int e, int end) const {
     return t;
 }
 
-SurfaceProjection ContactSurface2D::project(const V2& p, int start) const {
+SurfaceProjection MortarSurface2D::project(const V2& p, int start) const {
     SurfaceProjection r;
     int e = start;
     if (e < 0) { // nearest edge by the clamped segment projection
@@ -177,7 +177,7 @@ SurfaceProjection ContactSurface2D::project(const V2& p, int start) const {
     return r;
 }
 
-std::vector<SlavePoint> ContactSurface2D::integration_points() const {
+std::vector<SlavePoint> MortarSurface2D::integration_points() const {
     std::vector<SlavePoint> pts;
     const double g = 1.0 / std::sqrt(3.0);
     for (int e = 0; e < n_edges(); ++e) {
