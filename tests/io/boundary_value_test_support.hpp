@@ -12,9 +12,9 @@
 
 #include <gtest/gtest.h>
 
-#include "io/boundary_value_scene.hpp"
-#include "io/scene_error.hpp"
-#include "io/scene_toml.hpp"
+#include "io/boundary_value/boundary_value_scene.hpp"
+#include "io/scene/scene_error.hpp"
+#include "io/scene/scene_toml.hpp"
 #include "tests/io/scene_test_support.hpp"
 
 namespace ifsim::io::test {

@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include "io/cli.hpp"
+#include "io/cli/cli.hpp"
 
 namespace ifsim::io::test {
 

@@ -1,0 +1,285 @@
+#include "io/boundary_value/boundary_value_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "io/boundary_value/boundary_value_history.hpp"
+#include "io/output/history_writer.hpp"
+#include "io/output/run_clock.hpp"
+
+namespace ifsim::io {
+
+namespace {
+
+// Builds the solver and its contact pairs (in the scene's order); throws what fem throws for an
+// invalid set-up.
+std::unique_ptr<fem::StaticSolver> make_solver(const BoundaryValueScene& scene, bool simd) {
+    fem::SolverSettings settings = scene.settings;
+    settings.update.simd = simd;
+    auto solver = std::make_unique<fem::StaticSolver>(scene.mesh, scene.set_materials(), settings);
+    for (const BoundaryValueInterface& c : scene.contacts) {
+        fem::ContactPairSpec pair = c.pair;
+        pair.options.simd = simd;
+        solver->add_contact(std::move(pair));
+    }
+    return solver;
+}
+
+// A pair's keys for summary.json.
+nlohmann::ordered_json pair_details(const BoundaryValueInterface& bi) {
+    nlohmann::ordered_json j = {{"slave", bi.pair.slave_faces},
+                                {"master", bi.pair.master_faces},
+                                {"formulation", bi.formulation.formulation},
+                                {"initial_contact", bi.initial_contact},
+                                {"normal_penalty", bi.pair.normal_penalty}};
+    if (bi.formulation.is_coulomb()) {
+        j["friction_coefficient"] = bi.pair.friction.friction_coefficient;
+        j["tangential_stiffness"] = bi.pair.friction.tangential_stiffness;
+    } else {
+        j["model"] = bi.formulation.material.model;
+        j["parameters"] = bi.formulation.material.parameters;
+        j["roughness"] = bi.formulation.material.roughness;
+        j["shear_band_thickness"] = bi.pair.options.interface.shear_band_thickness;
+        j["subincrement"] = bi.formulation.subincrement;
+        j["jacobian"] = bi.formulation.jacobian;
+        if (bi.formulation.formulation == "stutz") {
+            j["stutz_initial_stress"] = bi.formulation.stutz_initial_stress;
+        }
+    }
+    return j;
+}
+
+// Above this relative out-of-balance force the initial state is worth a warning.
+constexpr double imbalance_warning = 1.0e-6;
+
+// Once, when the first stage has measured it: an initial state that the supports and loads do
+// not hold is almost always a scene mistake (a lateral stress on a free face).
+void warn_initial_imbalance(const fem::StaticSolver& solver, ProgressLine& line, bool& warned) {
+    const fem::InitialImbalance& b = solver.initial_imbalance();
+    if (warned || !b.evaluated) {
+        return;
+    }
+    warned = true;
+    if (b.relative <= imbalance_warning || line.quiet()) {
+        return;
+    }
+    const char* axis[] = {"x", "y", "z"};
+    const auto& x = solver.mesh().coordinates;
+    const int D = solver.mesh().dim();
+    const auto n = static_cast<std::size_t>(b.node * D);
+    line.break_line();
+    fmt::print(stderr,
+               "ifsim: warning: the initial state is not in equilibrium with the first stage's "
+               "supports and loads (relative residual {:.2e}; largest at node {} ({:.6g}, "
+               "{:.6g}{}) along {}: {:.4g} kN). The first increments will move the body to "
+               "equilibrium: support or load the faces whose initial stress is unbalanced.\n",
+               b.relative, b.node, x[n], x[n + 1], D == 3 ? fmt::format(", {:.6g}", x[n + 2]) : "",
+               axis[b.direction], b.force);
+}
+
+} // namespace
+
+BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene,
+                                                 const std::filesystem::path& dir,
+                                                 ProgressMode progress, bool simd) {
+    BoundaryValueRunOutcome out;
+    out.nodes = scene.mesh.n_nodes();
+    out.elements = scene.mesh.n_elements();
+    HistoryWriter history(dir, boundary_value_history_columns(scene));
+    ProgressLine line(progress, scene.total_steps(), static_cast<int>(scene.stages.size()));
+    std::unique_ptr<fem::StaticSolver> solver;
+    try {
+        const auto t0 = Clock::now();
+        solver = make_solver(scene, simd);
+        out.setup_seconds = since(t0);
+        const BoundaryValueProbe probe(scene);
+        {
+            const auto t1 = Clock::now();
+            BoundaryValueRow row;
+            probe.initial(*solver, row);
+            write_boundary_value_row(history, row);
+            out.row_seconds += since(t1);
+        }
+        long steps_before = 0;
+        long increment = 0;
+        bool warned = false;
+        out.ok = true;
+        for (std::size_t k = 0; k < scene.stages.size() && out.ok; ++k) {
+            const fem::Stage& stage = scene.stages[k];
+            const auto on_increment = [&](const fem::IncrementInfo& info) {
+                const auto t1 = Clock::now();
+                BoundaryValueRow row;
+                row.increment = ++increment;
+                row.stage = info.stage;
+                row.time = static_cast<double>(k) + info.t_end;
+                row.newton_iterations = static_cast<int>(info.corrections.size());
+                row.cuts = info.cut_depth;
+                row.residual = info.residuals.empty() ? 0.0 : info.residuals.back();
+                probe.measure(*solver, row);
+                write_boundary_value_row(history, row);
+                out.iterations.push_back(row.newton_iterations);
+                line.update(static_cast<double>(steps_before) + info.t_end * stage.steps,
+                            info.stage,
+                            fmt::format("increment {}  Newton {}  residual {:.1e}", increment,
+                                        row.newton_iterations, row.residual));
+                out.row_seconds += since(t1);
+            };
+            // A long increment (many Newton iterations, cuts) still moves the line.
+            const auto on_iteration = [&](const fem::IncrementInfo& info) {
+                warn_initial_imbalance(*solver, line, warned);
+                line.update(
+                    static_cast<double>(steps_before) + info.t_begin * stage.steps, info.stage,
+                    fmt::format("increment {}  Newton {}  residual {:.1e}{}", increment + 1,
+                                info.residuals.size() - 1, info.residuals.back(),
+                                info.cut_depth > 0 ? fmt::format("  cut x{}", 1 << info.cut_depth)
+                                                   : std::string()));
+            };
+            const fem::StageResult r = solver->run_stage(stage, on_increment, on_iteration);
+            if (!r.ok) {
+                out.ok = false;
+                out.reason = r.reason;
+            }
+            steps_before += stage.steps;
+        }
+    } catch (const std::exception& e) {
+        // An invalid set-up or a writer error in the middle of the run: keep the rows so far.
+        out.ok = false;
+        out.reason = fmt::format("run aborted: {}", e.what());
+    }
+    line.finish();
+    if (solver) {
+        out.counters = solver->counters();
+        out.imbalance = solver->initial_imbalance();
+        out.timers = solver->timers();
+        out.equations = solver->dof_map().n_equations;
+        out.setup_seconds = std::max(0.0, out.setup_seconds - out.timers.k0);
+    }
+    const auto t2 = Clock::now();
+    history.finish();
+    out.finish_seconds = since(t2);
+    out.rows = history.rows();
+    return out;
+}
+
+void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& scene,
+                                const BoundaryValueRunOutcome& run, double parse_s) {
+    const fem::SolverCounters& c = run.counters;
+    const bool contact = !scene.contacts.empty();
+    summary.ok = run.ok;
+    summary.reason = run.reason;
+    auto& k = summary.counters;
+    k["increments"] = c.increments;
+    k["newton_iterations"] = c.newton_iterations;
+    k["subincrements"] = rounded(c.contact_subincrements);
+    k["constitutive_evaluations"] =
+        c.constitutive_evaluations + rounded(c.contact_constitutive_evaluations);
+    k["cuts"] = c.cuts;
+    k["increment_growths"] = c.increment_growths;
+    k["predictor_solves"] = c.predictor_solves;
+    k["predictor_fallbacks"] = c.predictor_fallbacks;
+    k["predictor_rejections"] = c.predictor_rejections;
+    k["line_search_steps"] = c.line_search_steps;
+    k["stagnation_accepts"] = c.stagnation_accepts;
+    k["gathers"] = c.gathers;
+    k["material_evaluations"] = c.constitutive_evaluations;
+    k["tangent_evaluations"] = c.tangent_evaluations;
+    k["tangent_fallbacks"] = c.tangent_fallbacks;
+    k["failed_point_updates"] = c.failed_point_updates;
+    if (contact) {
+        k["contact_evaluations"] = c.contact_evaluations;
+        k["contact_point_updates"] = rounded(c.contact_point_updates);
+        k["contact_lanes"] = rounded(c.contact_lanes);
+        k["contact_constitutive_evaluations"] = rounded(c.contact_constitutive_evaluations);
+        k["contact_pairings"] = c.contact_pairings;
+        k["contact_pattern_rebuilds"] = c.contact_pattern_rebuilds;
+        k["contact_failures"] = c.contact_failures;
+        k["contact_relaxed_reruns"] = c.contact_relaxed_reruns;
+        k["contact_relaxed_point_updates"] = rounded(c.contact_relaxed_point_updates);
+    }
+    k["patterns_built"] = c.patterns_built;
+    k["linear_symbolic_analyses"] = c.linear.symbolic_analyses;
+    k["linear_factorisations"] = c.linear.numeric_factorisations;
+    k["linear_solves"] = c.linear.solves;
+    k["k0_points"] = c.k0_points;
+    k["gravity_load_applications"] = c.gravity_load_applications;
+
+    auto& d = summary.details;
+    d["mesh"] = {{"dimension", scene.mesh_spec.dimension},
+                 {"integration", scene.mesh_spec.integration},
+                 {"bodies", scene.bodies.size()},
+                 {"nodes", run.nodes},
+                 {"elements", run.elements},
+                 {"equations", run.equations}};
+    if (!scene.mesh_spec.file.empty()) {
+        d["mesh"]["file"] = scene.mesh_spec.path.string();
+    }
+    double mean = 0.0;
+    int max = 0;
+    for (int it : run.iterations) {
+        mean += it;
+        max = std::max(max, it);
+    }
+    if (!run.iterations.empty()) {
+        mean /= static_cast<double>(run.iterations.size());
+    }
+    d["iterations_per_increment"] = {{"mean", mean}, {"max", max}};
+    // Equilibrium reached: the largest relative residual of an accepted increment (at most
+    // [solver] residual_tolerance unless an increment stopped at the inner solves' noise floor,
+    // counted as stagnation_accepts, at most stagnation_tolerance).
+    d["worst_accepted_residual"] = c.worst_accepted_residual;
+    // Implicit gather: the largest change of an in-plane target at the last gather of an
+    // accepted increment, relative to its size (at most [solver] gather_tolerance).
+    d["worst_gather_change"] = c.worst_gather_change;
+    if (run.imbalance.evaluated) {
+        d["initial_imbalance"] = {{"relative_residual", run.imbalance.relative},
+                                  {"node", run.imbalance.node},
+                                  {"direction", run.imbalance.direction},
+                                  {"force", run.imbalance.force}};
+    }
+    if (contact) {
+        // One pair: "interface" as always; every pair (with its name) under "contacts".
+        if (scene.contacts.size() == 1) {
+            d["interface"] = pair_details(scene.contacts.front());
+        }
+        nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
+        for (const BoundaryValueInterface& bi : scene.contacts) {
+            nlohmann::ordered_json j = {{"name", bi.pair.name}};
+            j.update(pair_details(bi));
+            pairs.push_back(j);
+        }
+        d["contacts"] = pairs;
+        d["history_contact"] = scene.main_contact()->pair.name;
+        d["formulation"] = scene.main_contact()->formulation.formulation;
+    }
+    d["linear_solver"] = scene.linear_solver;
+    d["tangent"] = scene.tangent;
+    d["predictor"] = scene.predictor;
+    d["stages"] = scene.stages.size();
+    d["steps"] = scene.total_steps();
+    d["rows"] = run.rows;
+    d["outputs"] = {HistoryWriter::file_name};
+    if (!scene.description.empty()) {
+        d["description"] = scene.description;
+    }
+    const fem::SolverTimers& t = run.timers;
+    summary.phases = {{"parse", parse_s},
+                      {"setup", run.setup_seconds},
+                      {"element", t.element},
+                      {"assembly", t.assembly},
+                      {"solve", t.solve},
+                      {"contact_search", t.contact_search},
+                      {"contact_gather", t.contact_gather},
+                      {"contact_kernels", t.contact_kernels},
+                      {"contact_scatter", t.contact_scatter},
+                      {"gravity", t.gravity},
+                      {"k0", t.k0},
+                      {"pressure", t.pressure},
+                      {"output", run.row_seconds + run.finish_seconds}};
+}
+
+} // namespace ifsim::io

@@ -1,0 +1,43 @@
+#pragma once
+// Runs a boundary-value scene with fem's StaticSolver: the mesh, materials and contact pair of
+// the scene, its stages in order, one history row per converged increment (and row 0), the
+// progress line, and the run's summary (counters, phases, mesh details). A stage that fails
+// ends the run with its reason; the rows so far stay in history.csv.
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "fem/static_solver.hpp"
+#include "io/boundary_value/boundary_value_scene.hpp"
+#include "io/output/progress.hpp"
+#include "io/output/summary_writer.hpp"
+
+namespace ifsim::io {
+
+struct BoundaryValueRunOutcome {
+    bool ok = false;
+    std::string reason;
+    fem::SolverCounters counters;
+    fem::SolverTimers timers;
+    double setup_seconds = 0.0;  // solver construction and contact pair, without the K0 stress
+    double row_seconds = 0.0;    // rows and progress (inside the stages' time)
+    double finish_seconds = 0.0; // closing history.csv
+    std::size_t rows = 0;
+    long equations = 0;          // of the last stage's DOF map
+    std::vector<int> iterations; // Newton iterations of each converged increment
+    int nodes = 0, elements = 0;
+    fem::InitialImbalance imbalance; // of the initial state under the first stage
+};
+
+// Writes DIR/history.csv. Throws std::runtime_error only when history.csv cannot be written
+// at all.
+BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene,
+                                                 const std::filesystem::path& dir,
+                                                 ProgressMode progress, bool simd);
+
+void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& scene,
+                                const BoundaryValueRunOutcome& run, double parse_s);
+
+} // namespace ifsim::io

@@ -1,0 +1,150 @@
+#include "io/cli/cli.hpp"
+
+#include <exception>
+#include <iostream>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "io/cli/exit_codes.hpp"
+#include "io/cli/kernel_bench.hpp"
+#include "io/cli/run_command.hpp"
+#include "io/output/summary_writer.hpp"
+
+namespace ifsim::io {
+
+namespace {
+
+constexpr const char* app_footer = R"(
+  ifsim run SCENE.toml --out DIR [--set KEY=VALUE]... [--threads N] [--scalar]
+  ifsim kernel-bench --model MODEL [--formulation F] --points N [--threads T] [--scalar]
+                     [--seconds S] [--jacobian J] [--subincrement fixed|adaptive]
+Scene kinds: element-test (one material point), interface-test (simple interface shear:
+a sample in series with one interface point, paper section 5), boundary-value (finite
+elements: structured 2D/3D bodies or a Gmsh .msh mesh, contact pairs with their interface
+formulations, stages of prescribed displacements, ties, pressures, springs and gravity).
+Units kPa and m; compression negative; Voigt order 11 22 33 12 13 23 with tensor shear
+strains. Scene schema: docs/scenes.md; example scenes: scenes/. `ifsim run --help` and
+`ifsim kernel-bench --help` explain each command.)";
+
+constexpr const char* run_footer = R"(
+Scene keys, --set syntax, outputs and exit codes: docs/scenes.md.
+  --set KEY=VALUE   KEY is a dotted path; numbers pick array entries counted from 1
+                    (stage.2.deps_11 = deps_11 of the second [[stage]]); VALUE is a TOML
+                    value (0.5, "text", [1, 2], true) or a bare word taken as a string.
+Outputs in DIR: history.csv (one row per step or, for boundary-value scenes, per converged
+increment; row 0 = initial state) and, last,
+summary.json (status, timing, counters), written atomically.
+Exit codes: 0 ok, 1 output could not be written, 2 bad command line or scene, 3 run failed.)";
+
+constexpr const char* bench_footer = R"(
+Prints one JSON object: model, formulation, points, threads, path (simd | scalar),
+evaluations_per_second (constitutive evaluations, perturbed lanes included),
+points_per_second (complete point updates; for an interface formulation the whole
+Algorithm 1 with its Jacobian columns), and details (lanes, updates, wall_s, ...; for an
+interface formulation lanes_per_point and subincrements_per_point). The states are never
+committed: every repetition integrates the same valid states with the same increments.
+--formulation novel | stutz times the contact engine with --model hypoplasticity | sanisand
+as interface model; --formulation coulomb times batched Coulomb friction (no continuum model:
+--model coulomb, or any model name, which is then not used).)";
+
+} // namespace
+
+int run_cli(int argc, const char* const* argv) {
+    CLI::App app{fmt::format("ifsim {} ({}): continuum soil models as interface models "
+                             "(Staubach, Machacek, Wichtmann 2022)",
+                             build_version(), build_revision()),
+                 "ifsim"};
+    app.require_subcommand(1);
+    app.footer(app_footer);
+    app.set_version_flag("--version",
+                         fmt::format("ifsim {} ({})", build_version(), build_revision()));
+
+    RunOptions run;
+    bool progress = false;
+    CLI::App* run_cmd = app.add_subcommand("run", "Run a scene and write its results into DIR");
+    run_cmd->add_option("scene", run.scene, "Scene file (TOML)")->required();
+    run_cmd->add_option("--out,-o", run.out, "Output directory (created if missing)")->required();
+    run_cmd->add_option("--set", run.sets, "Override a scene key: KEY=VALUE (repeatable)")
+        ->type_name("KEY=VALUE")
+        ->allow_extra_args(false);
+    run_cmd->add_option("--threads", run.threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(1, 4096));
+    run_cmd->add_flag("--scalar", run.scalar,
+                      "Use the scalar kernel path instead of SIMD (same results to round-off)");
+    auto* progress_flag = run_cmd->add_flag(
+        "--progress", progress, "Show the progress line even when stderr is not a terminal");
+    run_cmd->add_flag("--quiet,-q", run.quiet, "No progress line and no result line")
+        ->excludes(progress_flag);
+    run_cmd->footer(run_footer);
+
+    KernelBenchOptions bench;
+    CLI::App* bench_cmd = app.add_subcommand(
+        "kernel-bench", "Time batched constitutive updates of N varied points (prints JSON)");
+    bench_cmd
+        ->add_option("--model", bench.model,
+                     "hypoplasticity | sanisand | linear-elastic (| coulomb with --formulation "
+                     "coulomb)")
+        ->required();
+    bench_cmd->add_option("--parameters", bench.parameters, "Built-in parameter set")
+        ->capture_default_str();
+    bench_cmd
+        ->add_option("--formulation", bench.formulation,
+                     "none (the continuum model alone) | novel | stutz | coulomb")
+        ->capture_default_str();
+    bench_cmd->add_option("--points", bench.points, "Number of material points")->required();
+    bench_cmd->add_option("--threads", bench.threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(1, 4096));
+    bench_cmd->add_flag("--scalar", bench.scalar, "Use the scalar kernel path instead of SIMD");
+    bench_cmd->add_option("--seconds", bench.seconds, "Time to spend in timed repetitions")
+        ->capture_default_str();
+    bench_cmd->add_option("--roughness", bench.roughness, "Roughness kappa in (0, 1]")
+        ->capture_default_str();
+    bench_cmd
+        ->add_option("--increment", bench.strain_increment,
+                     "Norm of every point's strain increment")
+        ->capture_default_str();
+    bench_cmd
+        ->add_option("--jacobian", bench.jacobian,
+                     "Interface Jacobian: perturbation (Eq. 37) | full-perturbation (Eqs. "
+                     "39-40) | analytical (Eq. B3)")
+        ->capture_default_str();
+    bench_cmd
+        ->add_option("--subincrement", bench.subincrement,
+                     "Algorithm 1 sub-increments: fixed | adaptive")
+        ->capture_default_str();
+    bench_cmd
+        ->add_option("--gap-increment", bench.gap_increment,
+                     "Typical tangential gap increment per interface update (m)")
+        ->capture_default_str();
+    bench_cmd
+        ->add_option("--shear-band-thickness", bench.shear_band_thickness,
+                     "Interface shear band thickness d_s0 (m)")
+        ->capture_default_str();
+    bench_cmd->footer(bench_footer);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int code = app.exit(e);
+        return code == 0 ? exit_code::ok : exit_code::bad_input;
+    }
+
+    if (run_cmd->parsed()) {
+        if (progress) {
+            run.progress = ProgressMode::always;
+        }
+        return run_command(run);
+    }
+    try {
+        const nlohmann::ordered_json result = run_kernel_bench(bench);
+        std::cout << result.dump(2) << std::endl;
+        return exit_code::ok;
+    } catch (const std::invalid_argument& e) {
+        fmt::print(stderr, "ifsim kernel-bench: error: {}\n", e.what());
+        return exit_code::bad_input;
+    }
+}
+
+} // namespace ifsim::io

@@ -1,0 +1,229 @@
+#include "io/cli/run_command.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "io/boundary_value/boundary_value_run.hpp"
+#include "io/boundary_value/boundary_value_scene.hpp"
+#include "io/element_test/element_test_run.hpp"
+#include "io/element_test/element_test_scene.hpp"
+#include "io/cli/exit_codes.hpp"
+#include "io/output/history_writer.hpp"
+#include "io/interface_test/interface_test_run.hpp"
+#include "io/interface_test/interface_test_scene.hpp"
+#include "io/output/run_clock.hpp"
+#include "io/scene/scene_error.hpp"
+#include "io/scene/scene_toml.hpp"
+#include "io/output/summary_writer.hpp"
+#include "io/cli/thread_limit.hpp"
+#include "io/scene/toml_describe.hpp"
+#include "kernels/simd.hpp"
+
+namespace ifsim::io {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Results of an earlier run in DIR must not survive as if they belonged to this one.
+void remove_stale_outputs(const fs::path& dir) {
+    for (const char* name : {summary_file_name, summary_temp_name, HistoryWriter::file_name,
+                             HistoryWriter::partial_name}) {
+        std::error_code ec;
+        fs::remove(dir / name, ec);
+    }
+}
+
+// The --set assignment an error key comes from, if any (the key itself or a key below it).
+std::optional<std::string> override_behind(const std::string& key,
+                                           const std::vector<std::string>& sets) {
+    for (auto it = sets.rbegin(); it != sets.rend(); ++it) {
+        const std::string k = override_key(*it);
+        if (!k.empty() && (key == k || key.starts_with(k + ".") || k.starts_with(key + "."))) {
+            return *it;
+        }
+    }
+    return std::nullopt;
+}
+
+nlohmann::ordered_json element_counters(const ElementTestCounters& c) {
+    return {{"increments", c.increments},
+            {"newton_iterations", c.newton_iterations},
+            {"subincrements", static_cast<long long>(std::llround(c.substeps))},
+            {"constitutive_evaluations", c.constitutive_evaluations},
+            {"rejected_substeps", static_cast<long long>(std::llround(c.rejected_substeps))},
+            {"rate_evaluations", static_cast<long long>(std::llround(c.rate_evaluations))},
+            {"unreliable_updates", c.unreliable_updates}};
+}
+
+// What an element-test run adds to its summary: status, counters, phases and the material.
+void add_element_test_results(RunSummary& summary, const ElementTestScene& scene,
+                              const ElementRunOutcome& run, double parse_s) {
+    const ElementTestResult& r = run.result;
+    summary.ok = r.ok;
+    summary.reason = r.reason;
+    summary.counters = element_counters(r.counters);
+    summary.details["model"] = scene.material.model;
+    summary.details["parameters"] = scene.material.parameters;
+    summary.details["roughness"] = scene.material.roughness;
+    summary.details["stages"] = scene.stages.size();
+    summary.details["steps"] = scene.total_steps();
+    summary.details["rows"] = run.rows;
+    summary.details["outputs"] = {HistoryWriter::file_name};
+    if (!scene.description.empty()) {
+        summary.details["description"] = scene.description;
+    }
+    // Rows are written from the driver's callback: their time is output, not driver time.
+    summary.phases = {{"parse", parse_s},
+                      {"constitutive", r.constitutive_seconds},
+                      {"driver", std::max(0.0, r.driver_seconds - run.row_seconds)},
+                      {"output", run.row_seconds + run.finish_seconds}};
+}
+
+int write_summary_or_report(const fs::path& dir, const RunSummary& summary, int code) {
+    try {
+        write_summary(dir, summary);
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "ifsim: error: {}\n", e.what());
+        return exit_code::io_error;
+    }
+    return code;
+}
+
+// A scene read for its kind.
+struct Scene {
+    std::string kind;
+    ElementTestScene element;
+    InterfaceTestScene interface;
+    BoundaryValueScene boundary_value;
+};
+
+// Runs the scene's kind and fills the summary with its results. Throws std::runtime_error when
+// history.csv cannot be written at all.
+void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double parse_s,
+              RunSummary& summary, std::string& label, long& steps) {
+    const ProgressMode progress = opt.quiet ? ProgressMode::never : opt.progress;
+    if (scene.kind == "boundary-value") {
+        const BoundaryValueScene& s = scene.boundary_value;
+        const BoundaryValueRunOutcome run = run_boundary_value_scene(s, dir, progress, !opt.scalar);
+        add_boundary_value_results(summary, s, run, parse_s);
+        label = fmt::format("{}D FE", s.mesh_spec.dimension);
+        if (s.contacts.size() == 1) {
+            label += ", " + s.contacts.front().formulation.formulation;
+        } else if (!s.contacts.empty()) {
+            label += fmt::format(", {} contact pairs", s.contacts.size());
+        }
+        steps = s.total_steps();
+        return;
+    }
+    if (scene.kind == "interface-test") {
+        InterfaceTestScene& s = scene.interface;
+        s.spec.contact.simd = !opt.scalar;
+        s.spec.sample_update.simd = !opt.scalar;
+        const InterfaceRunOutcome run = run_interface_test_scene(s, dir, progress);
+        add_interface_test_results(summary, s, run, parse_s);
+        label = s.coulomb() ? s.formulation
+                            : fmt::format("{} {}", s.formulation, s.interface_material.model);
+        steps = s.total_steps();
+        return;
+    }
+    ElementTestScene& s = scene.element;
+    s.settings.update.simd = !opt.scalar;
+    const ElementRunOutcome run = run_element_test_scene(s, dir, progress);
+    add_element_test_results(summary, s, run, parse_s);
+    label = s.material.model;
+    steps = s.total_steps();
+}
+
+} // namespace
+
+int run_command(const RunOptions& opt) {
+    const auto t_start = Clock::now();
+    const ThreadLimit threads(opt.threads);
+    const fs::path dir(opt.out);
+    {
+        std::error_code ec;
+        fs::create_directories(dir, ec);
+        if (ec || !fs::is_directory(dir)) {
+            fmt::print(stderr, "ifsim: error: cannot create the output directory {}: {}\n", opt.out,
+                       ec ? ec.message() : "a file of that name exists");
+            return exit_code::io_error;
+        }
+    }
+    remove_stale_outputs(dir);
+
+    RunSummary summary;
+    summary.scene = opt.scene;
+    summary.threads = threads.threads();
+    summary.details["overrides"] = opt.sets;
+    summary.details["path"] = opt.scalar ? "scalar" : "simd";
+    summary.details["lanes"] = opt.scalar ? std::size_t{1} : simd::lanes;
+
+    // Parse: the scene, the overrides, the kind's schema.
+    Scene scene;
+    try {
+        toml::table table = load_scene_table(opt.scene);
+        for (const auto& set : opt.sets) {
+            apply_override(table, set, opt.scene);
+        }
+        scene.kind = scene_kind(table, opt.scene);
+        summary.kind = scene.kind;
+        if (scene.kind == "element-test") {
+            scene.element = read_element_test_scene(table, opt.scene);
+        } else if (scene.kind == "interface-test") {
+            scene.interface = read_interface_test_scene(table, opt.scene);
+        } else if (scene.kind == "boundary-value") {
+            scene.boundary_value = read_boundary_value_scene(table, opt.scene);
+        } else {
+            throw SceneError(opt.scene, "kind",
+                             fmt::format("kind \"{}\" is not supported by this build; expected "
+                                         "\"element-test\", \"interface-test\" or "
+                                         "\"boundary-value\"",
+                                         scene.kind),
+                             line_in_file(*table.get("kind")));
+        }
+    } catch (const SceneError& e) {
+        std::string message = e.what();
+        if (const auto set = override_behind(e.key(), opt.sets)) {
+            message += fmt::format(" (from --set {})", *set);
+        }
+        fmt::print(stderr, "ifsim: error: {}\n", message);
+        summary.ok = false;
+        summary.reason = "scene error: " + message;
+        summary.wall_s = since(t_start);
+        summary.phases = {{"parse", summary.wall_s}};
+        return write_summary_or_report(dir, summary, exit_code::bad_input);
+    }
+    const double parse_s = since(t_start);
+
+    std::string label;
+    long steps = 0;
+    try {
+        run_kind(scene, opt, dir, parse_s, summary, label, steps);
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "ifsim: error: {}\n", e.what());
+        summary.ok = false;
+        summary.reason = e.what();
+        summary.wall_s = since(t_start);
+        write_summary_or_report(dir, summary, exit_code::io_error);
+        return exit_code::io_error;
+    }
+    summary.wall_s = since(t_start);
+
+    if (!summary.ok) {
+        fmt::print(stderr, "ifsim: run failed: {}\n", summary.reason);
+        return write_summary_or_report(dir, summary, exit_code::run_failed);
+    }
+    const int code = write_summary_or_report(dir, summary, exit_code::ok);
+    if (code == exit_code::ok && !opt.quiet) {
+        fmt::print("ifsim: {} ({}) ok: {} steps in {:.3f} s, results in {}\n", opt.scene, label,
+                   steps, summary.wall_s, opt.out);
+    }
+    return code;
+}
+
+} // namespace ifsim::io

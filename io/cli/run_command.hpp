@@ -1,0 +1,25 @@
+#pragma once
+// `ifsim run SCENE.toml --out DIR`: reads the scene (with --set overrides), runs it and writes
+// DIR/history.csv and, last, DIR/summary.json. Returns the process exit code (exit_codes.hpp);
+// messages go to stderr, one result line to stdout unless quiet.
+
+#include <string>
+#include <vector>
+
+#include "io/output/progress.hpp"
+
+namespace ifsim::io {
+
+struct RunOptions {
+    std::string scene;
+    std::string out;
+    std::vector<std::string> sets; // KEY=VALUE overrides, applied in order
+    int threads = 0;               // 0 = all cores
+    bool scalar = false;           // the scalar kernel path instead of SIMD
+    ProgressMode progress = ProgressMode::automatic;
+    bool quiet = false;
+};
+
+int run_command(const RunOptions& options);
+
+} // namespace ifsim::io

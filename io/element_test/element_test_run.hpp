@@ -1,0 +1,27 @@
+#pragma once
+// Runs an element-test scene with the engine's driver, streaming rows into history.csv and
+// showing progress. The row writing happens inside the driver's time; it is measured here so
+// the summary can report it as output time.
+
+#include <cstddef>
+#include <filesystem>
+
+#include "engine/element_test_driver.hpp"
+#include "io/element_test/element_test_scene.hpp"
+#include "io/output/progress.hpp"
+
+namespace ifsim::io {
+
+struct ElementRunOutcome {
+    ElementTestResult result;    // ok = false with a reason also for errors raised while running
+    std::size_t rows = 0;        // rows in history.csv
+    double row_seconds = 0.0;    // writing rows and progress, inside result.driver_seconds
+    double finish_seconds = 0.0; // closing and renaming history.csv
+};
+
+// Writes DIR/history.csv (kept with the rows so far when the run fails). Throws
+// std::runtime_error only when history.csv cannot be written at all.
+ElementRunOutcome run_element_test_scene(const ElementTestScene& scene,
+                                         const std::filesystem::path& dir, ProgressMode progress);
+
+} // namespace ifsim::io

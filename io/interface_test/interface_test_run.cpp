@@ -1,0 +1,106 @@
+#include "io/interface_test/interface_test_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+
+#include <fmt/format.h>
+
+#include "io/output/history_writer.hpp"
+#include "io/interface_test/interface_history.hpp"
+#include "io/output/run_clock.hpp"
+
+namespace ifsim::io {
+
+InterfaceRunOutcome run_interface_test_scene(const InterfaceTestScene& scene,
+                                             const std::filesystem::path& dir,
+                                             ProgressMode progress) {
+    InterfaceRunOutcome out;
+    HistoryWriter history(dir, interface_history_columns());
+    ProgressLine line(progress, scene.total_steps(), static_cast<int>(scene.spec.stages.size()));
+    const double t_N0 = scene.initial_normal_stress();
+    const double K =
+        scene.spec.control == NormalControl::constant_stiffness ? scene.spec.normal_stiffness : 0.0;
+    const auto on_row = [&](const InterfaceRow& row) {
+        const auto t0 = Clock::now();
+        write_interface_row(history, row, contact_normal_stress(t_N0, K, row));
+        line.update(row.step, row.stage);
+        out.row_seconds += since(t0);
+    };
+    try {
+        out.result = run_interface_test(scene.spec, on_row);
+    } catch (const std::exception& e) {
+        // A writer or engine error in the middle of the run: keep the rows so far.
+        out.result.ok = false;
+        out.result.reason = fmt::format("run aborted: {}", e.what());
+    }
+    line.finish();
+    const auto t1 = Clock::now();
+    history.finish();
+    out.finish_seconds = since(t1);
+    out.rows = history.rows();
+    return out;
+}
+
+void add_interface_test_results(RunSummary& summary, const InterfaceTestScene& scene,
+                                const InterfaceRunOutcome& run, double parse_s) {
+    const InterfaceTestResult& r = run.result;
+    const InterfaceTestCounters& c = r.counters;
+    summary.ok = r.ok;
+    summary.reason = r.reason;
+    summary.counters = {{"increments", c.increments},
+                        {"newton_iterations", c.newton_iterations},
+                        {"step_cuts", c.step_cuts},
+                        {"band_clamped_steps", c.band_clamped_steps},
+                        {"subincrements", rounded(c.subincrements)},
+                        {"constitutive_evaluations", rounded(c.constitutive_evaluations)},
+                        {"interface_newton_iterations", rounded(c.interface_newton_iterations)},
+                        {"interface_evaluations", rounded(c.interface_evaluations)},
+                        {"sample_evaluations", rounded(c.sample_evaluations)},
+                        {"model_substeps", rounded(c.model_substeps)}};
+    auto& d = summary.details;
+    const InterfaceTestSpec& spec = scene.spec;
+    d["formulation"] = scene.formulation;
+    if (scene.coulomb()) {
+        d["friction_coefficient"] = spec.coulomb.friction_coefficient;
+        d["tangential_stiffness"] = spec.coulomb.tangential_stiffness;
+    } else {
+        const InterfaceSettings& s = spec.contact.interface;
+        d["model"] = scene.interface_material.model;
+        d["parameters"] = scene.interface_material.parameters;
+        d["roughness"] = scene.interface_material.roughness;
+        d["shear_band_thickness"] = s.shear_band_thickness;
+        if (scene.formulation == "stutz") {
+            d["stutz_initial_stress"] = scene.stutz_initial_stress;
+        }
+        d["subincrement"] = scene.subincrement;
+        d["max_subincrement"] = s.max_subincrement;
+        d["tolerance"] = s.tolerance;
+        d["jacobian"] = scene.jacobian;
+        d["perturbation"] = spec.contact.perturbation;
+    }
+    d["sample_model"] = scene.sample_material.model;
+    d["sample_parameters"] = scene.sample_material.parameters;
+    d["height"] = spec.height;
+    d["normal_control"] = scene.normal_control;
+    d["initial_normal_stress"] = scene.initial_normal_stress();
+    if (spec.control == NormalControl::constant_stiffness) {
+        d["normal_stiffness"] = spec.normal_stiffness; // kPa/m
+    }
+    d["stages"] = spec.stages.size();
+    d["steps"] = scene.total_steps();
+    d["rows"] = run.rows;
+    d["outputs"] = {HistoryWriter::file_name};
+    if (!scene.description.empty()) {
+        d["description"] = scene.description;
+    }
+    // Rows are written from the driver's callback: their time is output, not driver time.
+    summary.phases = {{"parse", parse_s},
+                      {"interface", r.interface_seconds},
+                      {"sample", r.sample_seconds},
+                      {"driver", std::max(0.0, r.driver_seconds - run.row_seconds)},
+                      {"output", run.row_seconds + run.finish_seconds}};
+}
+
+} // namespace ifsim::io

@@ -1,0 +1,105 @@
+#include "io/scene/interface_formulation_reader.hpp"
+
+#include <string_view>
+
+#include <fmt/format.h>
+
+namespace ifsim::io {
+
+namespace {
+
+// [interface] keys of the continuum formulations (novel, stutz) and of Coulomb friction.
+constexpr std::string_view continuum_keys[] = {"model",
+                                               "parameters",
+                                               "roughness",
+                                               "shear_band_thickness",
+                                               "stutz_initial_stress",
+                                               "subincrement",
+                                               "max_subincrement",
+                                               "tolerance",
+                                               "jacobian",
+                                               "perturbation",
+                                               "open_threshold",
+                                               "void_ratio",
+                                               "intergranular_strain",
+                                               "back_stress",
+                                               "fabric"};
+constexpr std::string_view coulomb_keys[] = {"friction_coefficient", "tangential_stiffness"};
+
+template <std::size_t N>
+void reject_keys(const TableReader& t, const std::string_view (&keys)[N], const std::string& why) {
+    for (const auto& key : keys) {
+        if (t.has(key)) {
+            t.fail(key, why);
+        }
+    }
+}
+
+void read_continuum(const TableReader& t, InterfaceFormulationSpec& spec) {
+    const std::string& f = spec.formulation;
+    reject_keys(t, coulomb_keys,
+                fmt::format("applies to formulation \"coulomb\" only; expected no such key for "
+                            "formulation \"{}\"",
+                            f));
+    if (f == "novel" && t.has("stutz_initial_stress")) {
+        t.fail("stutz_initial_stress", "applies to formulation \"stutz\" only; expected no such "
+                                       "key for formulation \"novel\" (its in-plane stresses "
+                                       "always start from the continuum's)");
+    }
+    const double roughness = t.number_or("roughness", 0.9, Bounds::open_closed(0.0, 1.0));
+    spec.material =
+        read_model_and_parameters(t, "hypoplasticity", {"hypoplasticity", "sanisand"}, roughness);
+
+    ContactOptions& c = spec.contact;
+    InterfaceSettings& s = c.interface;
+    s.formulation = f == "novel" ? InterfaceFormulation::novel : InterfaceFormulation::stutz;
+    s.shear_band_thickness = t.number_or("shear_band_thickness", 0.003, Bounds::positive());
+    spec.subincrement = t.choice_or("subincrement", "fixed", {"fixed", "adaptive"});
+    s.adaptive = spec.subincrement == "adaptive";
+    s.max_subincrement = t.number_or("max_subincrement", 5.0e-6, Bounds::positive());
+    s.tolerance = t.number_or("tolerance", 2.0e-3, Bounds::open(0.0, 1.0));
+    s.adaptive_tolerance = s.tolerance; // the contract: one tolerance for both unless refined
+    spec.jacobian = t.choice_or("jacobian", "perturbation",
+                                {"perturbation", "full-perturbation", "analytical"});
+    c.jacobian = spec.jacobian == "perturbation"        ? ContactJacobian::perturbation
+                 : spec.jacobian == "full-perturbation" ? ContactJacobian::full_perturbation
+                                                        : ContactJacobian::analytical;
+    c.perturbation = t.number_or("perturbation", c.perturbation, Bounds::open(0.0, 1.0));
+    s.open_threshold = t.number_or("open_threshold", s.open_threshold, Bounds::positive());
+
+    spec.stress_start = InterfaceStressStart::continuum;
+    if (f == "stutz") {
+        spec.stutz_initial_stress =
+            t.choice_or("stutz_initial_stress", "continuum", {"continuum", "normal-contact"});
+        if (spec.stutz_initial_stress == "normal-contact") {
+            spec.stress_start = InterfaceStressStart::normal_contact;
+        }
+    }
+}
+
+void read_coulomb(const TableReader& t, InterfaceFormulationSpec& spec) {
+    reject_keys(t, continuum_keys,
+                "applies to formulations \"novel\" and \"stutz\" only; expected no such key for "
+                "formulation \"coulomb\" (friction_coefficient and tangential_stiffness "
+                "describe it)");
+    CoulombParams& p = spec.coulomb;
+    p.friction_coefficient =
+        t.number_or("friction_coefficient", p.friction_coefficient, Bounds::non_negative());
+    p.tangential_stiffness =
+        t.number_or("tangential_stiffness", p.tangential_stiffness, Bounds::positive());
+}
+
+} // namespace
+
+InterfaceFormulationSpec read_interface_formulation(const TableReader& t) {
+    InterfaceFormulationSpec spec;
+    spec.formulation = t.choice_or("formulation", "novel", {"novel", "stutz", "coulomb"});
+    if (spec.is_coulomb()) {
+        read_coulomb(t, spec);
+    } else {
+        read_continuum(t, spec);
+    }
+    return spec;
+}
+
+} // namespace ifsim::io
