@@ -16,7 +16,7 @@
 
 #include "engine/batched_update.hpp"
 #include "engine/contact_update.hpp"
-#include "engine/material_choice.hpp"
+#include "engine/model_registry.hpp"
 #include "kernels/coulomb.hpp"
 
 namespace ifsim {

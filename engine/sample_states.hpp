@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <random>
 
-#include "engine/material_choice.hpp"
+#include "engine/model_registry.hpp"
 #include "engine/material_points.hpp"
 
 namespace ifsim {

@@ -137,7 +137,7 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
         return out;
     }
     const BodyMaterial& soil = materials.at(out.slave_body);
-    if (soil.spec.model == "linear-elastic") {
+    if (soil.spec.model == LinearElastic::name) {
         t.fail("slave", fmt::format("expected the soil's faces as slave: the continuum stress and "
                                     "void ratio of body \"{}\" (linear-elastic) cannot start a "
                                     "continuum interface",

@@ -47,9 +47,8 @@ BodyMaterial read_body_material(const TableReader& t, const BodySpec& body) {
     t.allow_only({"model", "parameters", "density", "void_ratio", "stress", "k0", "surcharge",
                   "unit_weight", "surface", "intergranular_strain", "back_stress", "fabric"});
     BodyMaterial m;
-    m.spec =
-        read_model_and_parameters(t, "", {"hypoplasticity", "sanisand", "linear-elastic"}, 1.0);
-    const bool elastic = m.spec.model == "linear-elastic";
+    m.spec = read_model_and_parameters(t, "", false, 1.0);
+    const bool elastic = m.spec.model == LinearElastic::name;
     m.set.element_set = body.name;
     m.set.material = m.spec.choice;
     m.set.density = t.number_or("density", 0.0, Bounds::non_negative());

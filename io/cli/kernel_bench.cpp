@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "engine/batched_update.hpp"
-#include "engine/material_choice.hpp"
+#include "engine/model_registry.hpp"
 #include "engine/sample_states.hpp"
 #include "io/cli/interface_kernel_bench.hpp"
 #include "io/output/summary_writer.hpp"

@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/material_choice.hpp"
+#include "engine/model_registry.hpp"
 
 namespace ifsim::io {
 

@@ -16,17 +16,6 @@ void add_six(std::vector<std::string>& cols, const char* prefix) {
     }
 }
 
-// Prefixes of the model state entries 7.. (model_api.hpp layout), six each.
-std::vector<const char*> model_state_prefixes(const MaterialChoice& m) {
-    if (std::holds_alternative<HypoplasticityParams>(m)) {
-        return {"h"};
-    }
-    if (std::holds_alternative<SanisandParams>(m)) {
-        return {"a", "z", "ain"};
-    }
-    return {};
-}
-
 } // namespace
 
 std::vector<std::string> element_history_columns(const MaterialChoice& material) {
@@ -34,8 +23,8 @@ std::vector<std::string> element_history_columns(const MaterialChoice& material)
     add_six(cols, "eps");
     add_six(cols, "s");
     cols.emplace_back("e");
-    for (const char* prefix : model_state_prefixes(material)) {
-        add_six(cols, prefix);
+    for (std::string_view prefix : history_prefixes(material)) { // engine/model_registry.hpp
+        add_six(cols, std::string(prefix).c_str());
     }
     if (static_cast<int>(cols.size()) != 2 + 6 + state_size(material)) {
         throw std::logic_error(fmt::format("history columns of model {} do not match its state "

@@ -1,5 +1,6 @@
 #include "io/element_test/element_initial_state.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <variant>
 
@@ -118,18 +119,17 @@ void sanisand_state(const TableReader& initial, const SanisandParams& p, const S
 
 std::vector<double> model_state(const TableReader& t, const MaterialSpec& material,
                                 const Six& stress, double e) {
-    const bool hypo = material.model == "hypoplasticity";
-    const bool sanisand = material.model == "sanisand";
-    if (!hypo && t.has("intergranular_strain")) {
-        t.fail("intergranular_strain",
-               "applies to hypoplasticity only; expected no such key for model " + material.model);
-    }
-    for (const char* key : {"back_stress", "fabric"}) {
-        if (!sanisand && t.has(key)) {
-            t.fail(key,
-                   "applies to sanisand only; expected no such key for model " + material.model);
+    // A model's own state keys are allowed for that model only (engine/model_registry.hpp).
+    const std::vector<std::string_view> own = model_state_keys(material.model);
+    for_each_model([&](auto m) {
+        using M = decltype(m);
+        for (std::string_view key : ModelEntry<M>::state_keys) {
+            if (t.has(key) && std::find(own.begin(), own.end(), key) == own.end()) {
+                t.fail(key, fmt::format("applies to {} only; expected no such key for model {}",
+                                        M::name, material.model));
+            }
         }
-    }
+    });
     std::vector<double> y(stress.begin(), stress.end());
     y.push_back(e);
     if (const auto* p = std::get_if<HypoplasticityParams>(&material.choice)) {

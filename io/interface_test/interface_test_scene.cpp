@@ -41,8 +41,7 @@ SampleStart read_sample(const TableReader& t, InterfaceTestScene& scene) {
     t.allow_only({"model", "parameters", "height", "void_ratio", "stress", "intergranular_strain",
                   "back_stress", "fabric"});
     // The sample is continuum: roughness 1 (kappa concerns the interface only).
-    scene.sample_material = read_model_and_parameters(
-        t, "hypoplasticity", {"hypoplasticity", "sanisand", "linear-elastic"}, 1.0);
+    scene.sample_material = read_model_and_parameters(t, Hypoplasticity::name, false, 1.0);
     scene.spec.sample_material = scene.sample_material.choice;
     scene.spec.height = t.number_or("height", 0.02, Bounds::positive());
     SampleStart start;

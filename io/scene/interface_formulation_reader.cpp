@@ -47,8 +47,7 @@ void read_continuum(const TableReader& t, InterfaceFormulationSpec& spec) {
                                        "always start from the continuum's)");
     }
     const double roughness = t.number_or("roughness", 0.9, Bounds::open_closed(0.0, 1.0));
-    spec.material =
-        read_model_and_parameters(t, "hypoplasticity", {"hypoplasticity", "sanisand"}, roughness);
+    spec.material = read_model_and_parameters(t, Hypoplasticity::name, true, roughness);
 
     ContactOptions& c = spec.contact;
     InterfaceSettings& s = c.interface;

@@ -1,6 +1,8 @@
 #include "io/scene/material_parameters.hpp"
 
+#include <algorithm>
 #include <numbers>
+#include <span>
 
 #include <fmt/format.h>
 
@@ -73,13 +75,34 @@ LinearElasticParams inline_linear_elastic(const TableReader& t) {
     return p;
 }
 
-[[noreturn]] void unknown_set(const TableReader& material, const std::string& model,
-                              const std::string& name, const char* known) {
-    material.fail("parameters",
-                  fmt::format("no built-in {} parameter set \"{}\"; expected one of {} or an "
-                              "inline table [{}] with every value",
-                              model, name, known, material.key_path("parameters")));
+// A list of names as a message: "a", "b".
+std::string quoted(std::span<const std::string_view> names) {
+    std::string list;
+    for (const auto& n : names) {
+        list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", n);
+    }
+    return list;
 }
+
+// The io side of a model entry (engine/model_registry.hpp): its inline parameter table and
+// what a scene's material table adds to the parameters.
+HypoplasticityParams read_inline(const TableReader& t, const Hypoplasticity&) {
+    return inline_hypoplasticity(t);
+}
+SanisandParams read_inline(const TableReader& t, const Sanisand&) {
+    return inline_sanisand(t);
+}
+LinearElasticParams read_inline(const TableReader& t, const LinearElastic&) {
+    return inline_linear_elastic(t);
+}
+void complete(HypoplasticityParams& p, double roughness, bool intergranular_strain) {
+    p.intergranular_strain = intergranular_strain;
+    p.roughness = roughness;
+}
+void complete(SanisandParams& p, double roughness, bool) {
+    p.roughness = roughness;
+}
+void complete(LinearElasticParams&, double, bool) {}
 
 // The parameters of `model` from t's key "parameters" (a built-in set's name or an inline
 // table); a missing key takes `default_set` unless that is empty.
@@ -88,12 +111,14 @@ MaterialSpec build_material(const TableReader& t, const std::string& model, doub
     MaterialSpec spec;
     spec.model = model;
     spec.roughness = roughness;
+    const std::vector<std::string_view> sets = model_sets(model);
     const toml::node* given = t.find("parameters");
     if (given == nullptr && default_set.empty()) {
-        t.fail("parameters", fmt::format("missing; expected the name of a built-in set (\"l4c\", "
-                                         "\"karlsruhe-sand\") or an inline table [{}] with "
-                                         "every value of the model",
-                                         t.key_path("parameters")));
+        const std::string by_set =
+            sets.empty() ? "" : fmt::format("the name of a built-in set ({}) or ", quoted(sets));
+        t.fail("parameters", fmt::format("missing; expected {}an inline table [{}] with every "
+                                         "value of the model",
+                                         by_set, t.key_path("parameters")));
     }
     const bool by_name = given == nullptr || given->is_string();
     if (!by_name && !given->is_table()) {
@@ -102,46 +127,33 @@ MaterialSpec build_material(const TableReader& t, const std::string& model, doub
     spec.parameters = given == nullptr ? std::string(default_set)
                       : by_name        ? given->as_string()->get()
                                        : std::string("inline");
-
-    if (spec.model == "hypoplasticity") {
-        HypoplasticityParams p;
+    for_each_model([&](auto m) {
+        using M = decltype(m);
+        if (model != M::name) {
+            return;
+        }
+        typename M::Params p;
+        if (by_name && sets.empty()) {
+            t.fail("parameters", fmt::format("{} has no built-in sets; expected an inline table "
+                                             "[{}] with every value of the model",
+                                             model, t.key_path("parameters")));
+        }
         if (by_name) {
-            const auto set = parameter_sets::hypoplasticity(spec.parameters);
+            const auto set = ModelEntry<M>::set(spec.parameters);
             if (!set) {
-                unknown_set(t, spec.model, spec.parameters, "\"l4c\", \"karlsruhe-sand\"");
+                t.fail("parameters",
+                       fmt::format("no built-in {} parameter set \"{}\"; expected one of {} or "
+                                   "an inline table [{}] with every value",
+                                   model, spec.parameters, quoted(sets), t.key_path("parameters")));
             }
             p = *set;
         } else {
-            p = inline_hypoplasticity(t.table("parameters"));
+            p = read_inline(t.table("parameters"), m);
         }
-        p.intergranular_strain = intergranular_strain;
-        p.roughness = spec.roughness;
+        complete(p, spec.roughness, intergranular_strain);
         p.prepare();
         spec.choice = p;
-    } else if (spec.model == "sanisand") {
-        SanisandParams p;
-        if (by_name) {
-            const auto set = parameter_sets::sanisand(spec.parameters);
-            if (!set) {
-                unknown_set(t, spec.model, spec.parameters, "\"karlsruhe-sand\"");
-            }
-            p = *set;
-        } else {
-            p = inline_sanisand(t.table("parameters"));
-        }
-        p.roughness = spec.roughness;
-        p.prepare();
-        spec.choice = p;
-    } else {
-        if (by_name) {
-            t.fail("parameters", fmt::format("linear-elastic has no built-in sets; expected an "
-                                             "inline table [{}] with E (kPa) and nu",
-                                             t.key_path("parameters")));
-        }
-        LinearElasticParams p = inline_linear_elastic(t.table("parameters"));
-        p.prepare();
-        spec.choice = p;
-    }
+    });
     return spec;
 }
 
@@ -149,14 +161,17 @@ MaterialSpec build_material(const TableReader& t, const std::string& model, doub
 
 MaterialSpec read_material(const TableReader& material) {
     material.allow_only({"model", "parameters", "roughness", "intergranular_strain"});
-    const std::string model =
-        material.choice_or("model", "", {"hypoplasticity", "sanisand", "linear-elastic"});
-    const bool elastic = model == "linear-elastic";
-    if (elastic && material.has("roughness")) {
-        material.fail("roughness", "not used by linear-elastic; expected no roughness key");
+    const std::vector<std::string_view> models = model_names();
+    const std::string model = material.choice_or("model", "", models);
+    const std::vector<std::string_view> interface_models = model_names(true);
+    const bool interface_model =
+        std::find(interface_models.begin(), interface_models.end(), model) !=
+        interface_models.end();
+    if (!interface_model && material.has("roughness")) {
+        material.fail("roughness", "not used by " + model + "; expected no roughness key");
     }
     const double roughness = material.number_or("roughness", 1.0, Bounds::open_closed(0.0, 1.0));
-    if (model != "hypoplasticity" && material.has("intergranular_strain")) {
+    if (model != Hypoplasticity::name && material.has("intergranular_strain")) {
         material.fail("intergranular_strain",
                       "applies to hypoplasticity only; expected no such key for " + model);
     }
@@ -165,16 +180,11 @@ MaterialSpec read_material(const TableReader& material) {
 }
 
 MaterialSpec read_model_and_parameters(const TableReader& table, std::string_view default_model,
-                                       std::initializer_list<std::string_view> models,
-                                       double roughness) {
+                                       bool only_interface_models, double roughness) {
+    const std::vector<std::string_view> models = model_names(only_interface_models);
     const std::string model = table.choice_or("model", default_model, models);
-    std::string_view default_set;
-    if (model == "hypoplasticity") {
-        default_set = "l4c";
-    } else if (model == "sanisand") {
-        default_set = "karlsruhe-sand";
-    }
-    return build_material(table, model, roughness, true, default_set);
+    const std::vector<std::string_view> sets = model_sets(model);
+    return build_material(table, model, roughness, true, sets.empty() ? "" : sets.front());
 }
 
 } // namespace ifsim::io

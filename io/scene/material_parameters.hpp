@@ -14,7 +14,7 @@
 #include <string>
 #include <string_view>
 
-#include "engine/material_choice.hpp"
+#include "engine/model_registry.hpp"
 #include "io/scene/table_reader.hpp"
 
 namespace ifsim::io {
@@ -33,10 +33,9 @@ MaterialSpec read_material(const TableReader& material);
 // (an interface-test's [interface] or [sample]); the caller checks the table's other keys.
 // A missing `model` takes `default_model`, a missing `parameters` the model's default set
 // (`l4c` for hypoplasticity, the paper's Table 1 of §5; `karlsruhe-sand` for sanisand);
-// with an empty default_model the key is required. `models` lists the accepted models.
-// Throws SceneError.
+// with an empty default_model the key is required. The accepted models are those of
+// engine/model_registry.hpp, or only those usable as interface models. Throws SceneError.
 MaterialSpec read_model_and_parameters(const TableReader& table, std::string_view default_model,
-                                       std::initializer_list<std::string_view> models,
-                                       double roughness);
+                                       bool only_interface_models, double roughness);
 
 } // namespace ifsim::io

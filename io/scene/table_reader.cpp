@@ -164,6 +164,12 @@ std::string TableReader::string(std::string_view key) const {
 
 std::string TableReader::choice_or(std::string_view key, std::string_view fallback,
                                    std::initializer_list<std::string_view> choices) const {
+    return choice_or(key, fallback,
+                     std::span<const std::string_view>(choices.begin(), choices.size()));
+}
+
+std::string TableReader::choice_or(std::string_view key, std::string_view fallback,
+                                   std::span<const std::string_view> choices) const {
     std::string list;
     for (const auto& c : choices) {
         list += fmt::format("{}\"{}\"", list.empty() ? "" : " | ", c);

@@ -6,6 +6,7 @@
 #include <array>
 #include <initializer_list>
 #include <limits>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -61,6 +62,8 @@ public:
     // A string from a fixed set of choices.
     std::string choice_or(std::string_view key, std::string_view fallback,
                           std::initializer_list<std::string_view> choices) const;
+    std::string choice_or(std::string_view key, std::string_view fallback,
+                          std::span<const std::string_view> choices) const;
     // Six finite numbers in Voigt order 11 22 33 12 13 23.
     std::array<double, 6> six_numbers(std::string_view key) const;
     // `count` finite numbers within bounds (a coordinate, a size, a direction); `meaning` says
