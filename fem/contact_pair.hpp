@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "engine/contact_update.hpp"
-#include "engine/material_choice.hpp"
+#include "engine/model_registry.hpp"
 #include "fem/mortar_kinematics.hpp"
 #include "fem/mesh.hpp"
 #include "fem/stress_extrapolation.hpp"

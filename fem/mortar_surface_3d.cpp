@@ -1,3 +1,7 @@
+// Longer than 400 lines on purpose: the surface set-up (neighbours, smoothed nodal normals)
+// and the projection (Newton on a bilinear face, crossing to the neighbour across an edge,
+// the nearest-face start) are one algorithm whose pieces share the face geometry below;
+// split, each part would need the others' internals.
 #include "fem/mortar_surface_3d.hpp"
 
 #include <algorithm>

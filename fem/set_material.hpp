@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "engine/batched_update.hpp"
-#include "engine/material_choice.hpp"
+#include "engine/model_registry.hpp"
 #include "engine/tangent_kind.hpp"
 
 namespace ifsim::fem {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "engine/batched_update.hpp"
-#include "engine/material_choice.hpp"
+#include "engine/model_registry.hpp"
 #include "fem/element_geometry.hpp"
 #include "fem/linear_solver.hpp"
 #include "fem/set_material.hpp"

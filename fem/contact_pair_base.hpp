@@ -1,0 +1,272 @@
+#pragma once
+// What every contact pair shares (fem/contact_pair.cpp, fem/interface_pair.hpp): the mortar
+// kinematics of the mesh's dimension, the engine frame of each point (the kinematic frame
+// turned towards the preferred shear direction), the penalty with its offsets, and the
+// tractions of the last evaluation. Internal to the contact pairs.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "fem/contact_pair.hpp"
+#include "fem/mortar_contact.hpp"
+#include "fem/phase_timer.hpp"
+
+namespace ifsim::fem::detail {
+
+using Vec3 = std::array<double, 3>;
+
+inline double dot(const Vec3& a, const Vec3& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+// The engine's frame of a point: the kinematic frame turned about n so that t1 follows the
+// preferred shear direction. t1' = c t1 + s t2, t2' = -s t1 + c t2 (a rotation, so the frame
+// keeps its handedness; in 2D c = +-1, s = 0).
+struct PointFrame {
+    Vec3 n{}, t1{}, t2{};
+    double c = 1.0, s = 0.0;
+
+    // Kinematic (dg1, dg2) to the engine frame, and the engine's (tau1, tau2) back.
+    std::array<double, 2> to_local(const std::array<double, 2>& v) const {
+        return {c * v[0] + s * v[1], -s * v[0] + c * v[1]};
+    }
+    std::array<double, 2> to_kinematic(double a1, double a2) const {
+        return {c * a1 - s * a2, s * a1 + c * a2};
+    }
+};
+
+PointFrame engine_frame(const ContactKinematics& k, const Vec3& direction, int dim) {
+    PointFrame f;
+    f.n = k.n;
+    const double dn = dot(direction, k.n);
+    Vec3 d{direction[0] - dn * k.n[0], direction[1] - dn * k.n[1], direction[2] - dn * k.n[2]};
+    if (dim == 2) {
+        d[2] = 0.0; // in plane strain t1 stays in the plane
+    }
+    double c = dot(d, k.t1);
+    double s = dim == 2 ? 0.0 : dot(d, k.t2);
+    const double len = std::hypot(c, s);
+    if (len < 1.0e-12) { // direction normal to the surface: keep the kinematic frame
+        c = 1.0;
+        s = 0.0;
+    } else if (dim == 2) {
+        c = c >= 0.0 ? 1.0 : -1.0;
+    } else {
+        c /= len;
+        s /= len;
+    }
+    f.c = c;
+    f.s = s;
+    for (std::size_t i = 0; i < 3; ++i) {
+        f.t1[i] = c * k.t1[i] + s * k.t2[i];
+        f.t2[i] = -s * k.t1[i] + c * k.t2[i];
+    }
+    return f;
+}
+
+// sin(kappa phi_c) of an interface model (paper Eqs. 30, 33).
+inline double interface_friction_sine(const HypoplasticityParams& p) {
+    return std::sin(p.roughness * p.phi_c);
+}
+inline double interface_friction_sine(const SanisandParams& p) {
+    const double phi_c = std::asin(3.0 * p.M_c / (6.0 + p.M_c)); // M_c = 6 sin / (3 - sin)
+    return std::sin(p.roughness * phi_c);
+}
+
+// Slave integration points: 2-point Gauss per edge (2D), 2x2 per face (3D).
+inline std::size_t slave_point_count(const Mesh& mesh, const ContactPairSpec& spec) {
+    return (mesh.dim() == 2 ? 2 : 4) * mesh.face_set(spec.slave_faces).size();
+}
+
+inline std::unique_ptr<MortarKinematics> make_kinematics(const Mesh& mesh,
+                                                         const ContactPairSpec& spec) {
+    if (mesh.dim() == 2) {
+        return std::make_unique<MortarContact<2>>(mesh, spec.slave_faces, spec.master_faces);
+    }
+    return std::make_unique<MortarContact<3>>(mesh, spec.slave_faces, spec.master_faces);
+}
+
+// What every pair shares: kinematics, engine frames, the penalty with its offsets, and the
+// tractions of the last evaluation in the kinematic frame.
+class PairBase : public ContactPair {
+public:
+    PairBase(const Mesh& mesh, ContactPairSpec spec)
+        : spec_(std::move(spec)), kin_(make_kinematics(mesh, spec_)), dim_(mesh.dim()) {
+        if (!(spec_.normal_penalty > 0.0)) {
+            throw std::invalid_argument(
+                fmt::format("contact pair '{}': the normal penalty must be positive, got {}",
+                            spec_.name, spec_.normal_penalty));
+        }
+    }
+
+    const ContactPairSpec& spec() const override { return spec_; }
+    const MortarKinematics& kinematics() const override { return *kin_; }
+
+    bool begin_increment(const Mesh& mesh, const std::vector<double>& u,
+                         const ElementStresses& stresses) override {
+        bool changed = false;
+        {
+            PhaseTimer timer(timers_.search);
+            changed = kin_->pair(mesh, u);
+        }
+        if (kin_->n_points() != slave_point_count(mesh, spec_)) {
+            throw std::logic_error("contact kinematics: unexpected number of slave points");
+        }
+        PhaseTimer timer(timers_.gather);
+        const std::size_t n = kin_->n_points();
+        frames_.resize(n);
+        local_stress_.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            frames_[i] = engine_frame(kin_->point(i), spec_.shear_direction, dim_);
+        }
+        if (needs_stress() || (first_ && spec_.prestressed)) {
+            extrapolate(stresses);
+        }
+        if (first_) {
+            gap_offset_.assign(n, 0.0);
+            for (std::size_t i = 0; i < n && spec_.prestressed; ++i) {
+                const ContactKinematics& k = kin_->point(i);
+                const double s_nn = local_stress_[i][0];
+                if (k.active && s_nn < 0.0) {
+                    gap_offset_[i] = k.g_N - s_nn / spec_.normal_penalty;
+                }
+            }
+            start(local_stress_);
+            first_ = false;
+        }
+        traction_.assign(n, {});
+        new_increment();
+        return changed;
+    }
+
+    void add_tangent(std::vector<ContactTriplet>& K) override {
+        refresh_jacobian();
+        PhaseTimer timer(timers_.scatter);
+        scratch_.assign(scratch_.size(), 0.0);
+        kin_->assemble(traction_, scratch_, &K);
+    }
+
+    ContactResultant resultant() const override {
+        ContactResultant r;
+        if (traction_.size() != kin_->n_points()) {
+            return r; // before the first pairing: nothing in contact yet
+        }
+        for (std::size_t i = 0; i < kin_->n_points(); ++i) {
+            const ContactKinematics& k = kin_->point(i);
+            if (!k.active) {
+                continue;
+            }
+            const ContactTraction& t = traction_[i];
+            const double w = k.weight;
+            r.area += w;
+            ++r.active;
+            r.closed += t.t_N < 0.0 ? 1 : 0;
+            r.t_N += w * t.t_N;
+            for (std::size_t d = 0; d < 3; ++d) {
+                r.shear[d] += w * (t.tau[0] * k.t1[d] + t.tau[1] * k.t2[d]);
+            }
+            add_state_means(i, w, r);
+        }
+        if (r.area > 0.0) {
+            r.t_N /= r.area;
+            for (double& v : r.shear) {
+                v /= r.area;
+            }
+            r.void_ratio /= r.area;
+            r.eps_N /= r.area;
+            r.band_thickness /= r.area;
+            r.sigma_p1 /= r.area;
+            r.sigma_p2 /= r.area;
+        }
+        return r;
+    }
+
+protected:
+    virtual bool needs_stress() const = 0; // s_p1, s_p2 every increment
+    virtual void refresh_jacobian() {}     // Jacobian columns of the last evaluate() if deferred
+    virtual void start(const std::vector<Voigt6>& local_stress) = 0;
+    virtual void add_state_means(std::size_t, double, ContactResultant&) const {}
+    virtual void new_increment() {}
+
+    // Continuum stress at each slave point (Eq. 14) rotated into its engine frame (Eq. 15).
+    void extrapolate(const ElementStresses& stresses) {
+        std::vector<Voigt6> at_points;
+        for (std::size_t i = 0; i < kin_->n_points(); ++i) {
+            const ContactKinematics& k = kin_->point(i);
+            stresses(k.slave_element, at_points);
+            const Voigt6 s = extrapolate_stress(dim_, at_points, k.slave_natural.data());
+            const PointFrame& f = frames_[i];
+            local_stress_[i] = rotate_to_frame(s, f.n, f.t1, f.t2);
+        }
+    }
+
+    // Normal traction of the penalty and its derivative for point i's current gap.
+    std::array<double, 2> penalty(std::size_t i) const {
+        const ContactKinematics& k = kin_->point(i);
+        const double g = k.g_N - gap_offset_[i];
+        if (!k.active || g > 0.0) {
+            return {0.0, 0.0};
+        }
+        return {spec_.normal_penalty * g, spec_.normal_penalty};
+    }
+
+    // Gaps for the trial increment into the engine's input columns (the column indices of
+    // its point layout: t_N, k_N, dg1, dg2), the frame of every point.
+    template <class Points>
+    void gather_gaps(const std::vector<double>& du, Points& cp, int col_t_N, int col_k_N,
+                     int col_dg1, int col_dg2) {
+        kin_->update_gaps(du);
+        scratch_.resize(du.size());
+        for (std::size_t i = 0; i < kin_->n_points(); ++i) {
+            const PointFrame& f = frames_[i];
+            cp.set_frame(i, f.n.data(), f.t1.data(), f.t2.data());
+            const auto [t_N, k_N] = penalty(i);
+            const auto dg = f.to_local(kin_->point(i).dg_T);
+            const bool active = kin_->point(i).active;
+            cp.input(col_t_N)[i] = t_N;
+            cp.input(col_k_N)[i] = k_N;
+            cp.input(col_dg1)[i] = active ? dg[0] : 0.0;
+            cp.input(col_dg2)[i] = active ? dg[1] : 0.0;
+        }
+    }
+
+    // Engine outputs (local traction, Jacobian columns) of point i into the kinematic frame.
+    template <class Points>
+    void take_traction(const Points& cp, std::size_t i) {
+        const PointFrame& f = frames_[i];
+        ContactTraction& t = traction_[i];
+        if (!kin_->point(i).active) {
+            t = {};
+            return;
+        }
+        t.t_N = cp.output(contact_col::traction)[i];
+        t.tau = f.to_kinematic(cp.output(contact_col::traction + 1)[i],
+                               cp.output(contact_col::traction + 2)[i]);
+        for (int c = 0; c < 2 * dim_; ++c) {
+            const auto cu = static_cast<std::size_t>(c);
+            t.jac[0][cu] = cp.jacobian(i, 0, c);
+            const auto tau = f.to_kinematic(cp.jacobian(i, 1, c), cp.jacobian(i, 2, c));
+            t.jac[1][cu] = tau[0];
+            t.jac[2][cu] = tau[1];
+        }
+    }
+
+    ContactPairSpec spec_;
+    std::unique_ptr<MortarKinematics> kin_;
+    int dim_;
+    bool first_ = true;
+    std::vector<PointFrame> frames_;
+    std::vector<Voigt6> local_stress_;
+    std::vector<double> gap_offset_;
+    std::vector<ContactTraction> traction_;
+    std::vector<double> scratch_; // forces of add_tangent's assembly, discarded
+};
+
+} // namespace ifsim::fem::detail
