@@ -273,7 +273,6 @@ TestCase make_case(const std::string& name, const Options& o) {
     iface.roughness = 0.9;
     iface.prepare();
     InterfaceTestSpec& s = tc.spec;
-    s.kind = InterfaceKind::continuum;
     s.interface_material = iface;
     s.sample_material = sample;
     s.height = 0.02;

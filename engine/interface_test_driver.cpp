@@ -256,7 +256,7 @@ InterfaceTestResult run_interface_test(const InterfaceTestSpec& spec,
     return std::visit(
         [&](const auto& sp) {
             using Ms = typename model_of<std::decay_t<decltype(sp)>>::type;
-            if (spec.kind == InterfaceKind::coulomb) {
+            if (spec.contact.interface.formulation == InterfaceFormulation::coulomb) {
                 CoulombInterface iface(spec.coulomb, spec.sample_state.at(3),
                                        spec.sample_state.at(4), result);
                 return drive<Ms>(spec, sp, iface, result, on_row);

@@ -21,7 +21,6 @@
 
 namespace ifsim {
 
-enum class InterfaceKind { continuum, coulomb }; // continuum: novel or Stutz (settings.formulation)
 enum class NormalControl { constant_stress, constant_stiffness };
 
 struct InterfaceStage {
@@ -31,10 +30,9 @@ struct InterfaceStage {
 };
 
 struct InterfaceTestSpec {
-    InterfaceKind kind = InterfaceKind::continuum;
-    MaterialChoice interface_material;   // continuum model used as interface model
+    MaterialChoice interface_material;   // continuum model used as interface model (not coulomb)
     std::vector<double> interface_state; // its initial state (local axes, model layout)
-    CoulombParams coulomb;               // kind == coulomb
+    CoulombParams coulomb;               // contact.interface.formulation == coulomb
     MaterialChoice sample_material;
     std::vector<double> sample_state; // initial sample state (local axes)
     double height = 0.02;             // sample height H (m)

@@ -73,7 +73,7 @@ private:
 std::unique_ptr<ContactPair> make_contact_pair(const Mesh& mesh, ContactPairSpec spec) {
     mesh.face_set(spec.slave_faces); // throws naming the set
     mesh.face_set(spec.master_faces);
-    if (spec.coulomb) {
+    if (spec.coulomb()) {
         return std::make_unique<CoulombPair>(mesh, std::move(spec));
     }
     return std::visit(

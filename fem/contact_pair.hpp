@@ -28,8 +28,8 @@
 
 #include "engine/contact_update.hpp"
 #include "engine/model_registry.hpp"
-#include "fem/mortar_kinematics.hpp"
 #include "fem/mesh.hpp"
+#include "fem/mortar_kinematics.hpp"
 #include "fem/stress_extrapolation.hpp"
 #include "kernels/coulomb.hpp"
 
@@ -48,16 +48,17 @@ struct ContactPairSpec {
     double normal_penalty = 1.0e8; // k_N, kPa/m
     bool prestressed = true;
     std::array<double, 3> shear_direction{1.0, 0.0, 0.0};
-    bool coulomb = false;
-    CoulombParams friction;                 // coulomb
+    CoulombParams friction;                 // coulomb (options.interface.formulation)
     MaterialChoice interface_material;      // continuum (hypoplasticity or sanisand)
     InterfaceStateFromStress initial_state; // continuum
-    ContactOptions options;                 // continuum: formulation, Algorithm 1, Jacobian
+    ContactOptions options;                 // formulation; continuum: Algorithm 1, Jacobian
     // Continuum, Eq. 37 / Eqs. 39-40: a residual evaluation runs the base lanes only and the
     // Jacobian lanes run (with the base lanes again) when the tangent is asked for. Same
     // results, 25 % fewer lanes in the shear-box scenes, but not faster: the base lanes are the
     // costly ones (bench_fe_shear_box: 2D 9-16 % slower, 3D 5-11 % faster), so off by default.
     bool defer_jacobian = false;
+
+    bool coulomb() const { return options.interface.formulation == InterfaceFormulation::coulomb; }
 };
 
 struct ContactPairTimers {

@@ -11,9 +11,12 @@
 
 namespace ifsim {
 
+// The interface formulations of a contact, in one list for every layer. Algorithm 1 runs the
+// first two; coulomb is penalty friction (kernels/coulomb.hpp), routed to its own engine.
 enum class InterfaceFormulation : int {
-    novel = 0, // Eqs. 17-24: sigma_p1, sigma_p2 from the extrapolated continuum stress
-    stutz = 1  // Eqs. 10-12: in-plane strains zero, Newton on eps_N only
+    novel = 0,  // Eqs. 17-24: sigma_p1, sigma_p2 from the extrapolated continuum stress
+    stutz = 1,  // Eqs. 10-12: in-plane strains zero, Newton on eps_N only
+    coulomb = 2 // Coulomb penalty friction, no continuum model
 };
 
 enum class NewtonJacobian : int {

@@ -132,7 +132,7 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     out.formulation = read_interface_formulation(t);
     const InterfaceFormulationSpec& f = out.formulation;
     if (f.is_coulomb()) {
-        pair.coulomb = true;
+        pair.options.interface.formulation = InterfaceFormulation::coulomb;
         pair.friction = f.coulomb;
         return out;
     }

@@ -34,7 +34,7 @@ std::unique_ptr<fem::StaticSolver> make_solver(const BoundaryValueScene& scene, 
 nlohmann::ordered_json pair_details(const BoundaryValueInterface& bi) {
     nlohmann::ordered_json j = {{"slave", bi.pair.slave_faces},
                                 {"master", bi.pair.master_faces},
-                                {"formulation", bi.formulation.formulation},
+                                {"formulation", bi.formulation.name()},
                                 {"initial_contact", bi.initial_contact},
                                 {"normal_penalty", bi.pair.normal_penalty}};
     if (bi.formulation.is_coulomb()) {
@@ -47,7 +47,7 @@ nlohmann::ordered_json pair_details(const BoundaryValueInterface& bi) {
         j["shear_band_thickness"] = bi.pair.options.interface.shear_band_thickness;
         j["subincrement"] = bi.formulation.subincrement;
         j["jacobian"] = bi.formulation.jacobian;
-        if (bi.formulation.formulation == "stutz") {
+        if (bi.formulation.formulation == InterfaceFormulation::stutz) {
             j["stutz_initial_stress"] = bi.formulation.stutz_initial_stress;
         }
     }
@@ -254,7 +254,7 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
         }
         d["contacts"] = pairs;
         d["history_contact"] = scene.main_contact()->pair.name;
-        d["formulation"] = scene.main_contact()->formulation.formulation;
+        d["formulation"] = scene.main_contact()->formulation.name();
     }
     d["linear_solver"] = scene.linear_solver;
     d["tangent"] = scene.tangent;

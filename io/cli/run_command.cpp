@@ -9,17 +9,18 @@
 
 #include "io/boundary_value/boundary_value_run.hpp"
 #include "io/boundary_value/boundary_value_scene.hpp"
+#include "io/cli/exit_codes.hpp"
+#include "io/cli/thread_limit.hpp"
+#include "io/scene/interface_formulation_reader.hpp"
 #include "io/element_test/element_test_run.hpp"
 #include "io/element_test/element_test_scene.hpp"
-#include "io/cli/exit_codes.hpp"
-#include "io/output/history_writer.hpp"
 #include "io/interface_test/interface_test_run.hpp"
 #include "io/interface_test/interface_test_scene.hpp"
+#include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
+#include "io/output/summary_writer.hpp"
 #include "io/scene/scene_error.hpp"
 #include "io/scene/scene_toml.hpp"
-#include "io/output/summary_writer.hpp"
-#include "io/cli/thread_limit.hpp"
 #include "io/scene/toml_describe.hpp"
 #include "kernels/simd.hpp"
 
@@ -113,7 +114,7 @@ void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double p
         add_boundary_value_results(summary, s, run, parse_s);
         label = fmt::format("{}D FE", s.mesh_spec.dimension);
         if (s.contacts.size() == 1) {
-            label += ", " + s.contacts.front().formulation.formulation;
+            label += ", " + s.contacts.front().formulation.name();
         } else if (!s.contacts.empty()) {
             label += fmt::format(", {} contact pairs", s.contacts.size());
         }
@@ -126,8 +127,8 @@ void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double p
         s.spec.sample_update.simd = !opt.scalar;
         const InterfaceRunOutcome run = run_interface_test_scene(s, dir, progress);
         add_interface_test_results(summary, s, run, parse_s);
-        label = s.coulomb() ? s.formulation
-                            : fmt::format("{} {}", s.formulation, s.interface_material.model);
+        const std::string_view f = formulation_name(s.spec.contact.interface.formulation);
+        label = s.coulomb() ? std::string(f) : fmt::format("{} {}", f, s.interface_material.model);
         steps = s.total_steps();
         return;
     }

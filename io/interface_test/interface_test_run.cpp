@@ -7,9 +7,10 @@
 
 #include <fmt/format.h>
 
-#include "io/output/history_writer.hpp"
 #include "io/interface_test/interface_history.hpp"
+#include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
+#include "io/scene/interface_formulation_reader.hpp"
 
 namespace ifsim::io {
 
@@ -61,7 +62,7 @@ void add_interface_test_results(RunSummary& summary, const InterfaceTestScene& s
                         {"model_substeps", rounded(c.model_substeps)}};
     auto& d = summary.details;
     const InterfaceTestSpec& spec = scene.spec;
-    d["formulation"] = scene.formulation;
+    d["formulation"] = formulation_name(spec.contact.interface.formulation);
     if (scene.coulomb()) {
         d["friction_coefficient"] = spec.coulomb.friction_coefficient;
         d["tangential_stiffness"] = spec.coulomb.tangential_stiffness;
@@ -71,7 +72,7 @@ void add_interface_test_results(RunSummary& summary, const InterfaceTestScene& s
         d["parameters"] = scene.interface_material.parameters;
         d["roughness"] = scene.interface_material.roughness;
         d["shear_band_thickness"] = s.shear_band_thickness;
-        if (scene.formulation == "stutz") {
+        if (spec.contact.interface.formulation == InterfaceFormulation::stutz) {
             d["stutz_initial_stress"] = scene.stutz_initial_stress;
         }
         d["subincrement"] = scene.subincrement;

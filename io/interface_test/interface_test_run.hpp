@@ -1,7 +1,7 @@
 #pragma once
-// Runs an interface-test scene with the engine's driver (engine/interface_test_driver.hpp), streaming
-// rows into history.csv and showing progress, and fills the run's summary. Writing rows happens
-// inside the driver's time; it is measured here so the summary reports it as output time.
+// Runs an interface-test scene with the engine's driver (engine/interface_test_driver.hpp),
+// streaming rows into history.csv and showing progress, and fills the run's summary. Writing rows
+// happens inside the driver's time; it is measured here so the summary reports it as output time.
 
 #include <cstddef>
 #include <filesystem>

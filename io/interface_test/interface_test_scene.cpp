@@ -78,9 +78,8 @@ void read_interface(const TableReader& t, InterfaceTestScene& scene, const Sampl
                   "subincrement", "max_subincrement", "tolerance", "jacobian", "perturbation",
                   "void_ratio", "intergranular_strain", "back_stress", "fabric"});
     const InterfaceFormulationSpec f = read_interface_formulation(t);
-    scene.formulation = f.formulation;
     if (f.is_coulomb()) {
-        scene.spec.kind = InterfaceKind::coulomb;
+        scene.spec.contact.interface.formulation = InterfaceFormulation::coulomb;
         scene.spec.coulomb = f.coulomb;
         check_friction_cone(t, f.coulomb, sample);
         return;
@@ -89,7 +88,6 @@ void read_interface(const TableReader& t, InterfaceTestScene& scene, const Sampl
     scene.interface_material = f.material;
     scene.subincrement = f.subincrement;
     scene.jacobian = f.jacobian;
-    scene.spec.kind = InterfaceKind::continuum;
     scene.spec.interface_material = f.material.choice;
     scene.spec.contact = f.contact;
     scene.spec.contact.interface.ndim = 3;

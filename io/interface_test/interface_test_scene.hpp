@@ -17,7 +17,6 @@ namespace ifsim::io {
 
 struct InterfaceTestScene {
     std::string description;
-    std::string formulation;          // novel | stutz | coulomb
     std::string stutz_initial_stress; // continuum | normal-contact (stutz only)
     MaterialSpec interface_material;  // novel and stutz
     MaterialSpec sample_material;
@@ -28,7 +27,9 @@ struct InterfaceTestScene {
     std::string jacobian;        // perturbation | full-perturbation | analytical (novel, stutz)
     InterfaceTestSpec spec;      // ready to run (normal_stiffness in kPa/m)
 
-    bool coulomb() const { return spec.kind == InterfaceKind::coulomb; }
+    bool coulomb() const {
+        return spec.contact.interface.formulation == InterfaceFormulation::coulomb;
+    }
     double initial_normal_stress() const { return spec.sample_state.at(0); } // t_N0
     long total_steps() const;
 };

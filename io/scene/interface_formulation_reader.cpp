@@ -1,6 +1,8 @@
 #include "io/scene/interface_formulation_reader.hpp"
 
+#include <array>
 #include <string_view>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -35,8 +37,13 @@ void reject_keys(const TableReader& t, const std::string_view (&keys)[N], const 
     }
 }
 
+constexpr std::array<std::pair<InterfaceFormulation, std::string_view>, 3> names{
+    {{InterfaceFormulation::novel, "novel"},
+     {InterfaceFormulation::stutz, "stutz"},
+     {InterfaceFormulation::coulomb, "coulomb"}}};
+
 void read_continuum(const TableReader& t, InterfaceFormulationSpec& spec) {
-    const std::string& f = spec.formulation;
+    const std::string f = spec.name();
     reject_keys(t, coulomb_keys,
                 fmt::format("applies to formulation \"coulomb\" only; expected no such key for "
                             "formulation \"{}\"",
@@ -51,7 +58,7 @@ void read_continuum(const TableReader& t, InterfaceFormulationSpec& spec) {
 
     ContactOptions& c = spec.contact;
     InterfaceSettings& s = c.interface;
-    s.formulation = f == "novel" ? InterfaceFormulation::novel : InterfaceFormulation::stutz;
+    s.formulation = spec.formulation;
     s.shear_band_thickness = t.number_or("shear_band_thickness", 0.003, Bounds::positive());
     spec.subincrement = t.choice_or("subincrement", "fixed", {"fixed", "adaptive"});
     s.adaptive = spec.subincrement == "adaptive";
@@ -90,9 +97,31 @@ void read_coulomb(const TableReader& t, InterfaceFormulationSpec& spec) {
 
 } // namespace
 
+std::string_view formulation_name(InterfaceFormulation f) {
+    for (const auto& [value, name] : names) {
+        if (value == f) {
+            return name;
+        }
+    }
+    return "unknown";
+}
+
+std::string InterfaceFormulationSpec::name() const {
+    return std::string(formulation_name(formulation));
+}
+
 InterfaceFormulationSpec read_interface_formulation(const TableReader& t) {
     InterfaceFormulationSpec spec;
-    spec.formulation = t.choice_or("formulation", "novel", {"novel", "stutz", "coulomb"});
+    std::array<std::string_view, names.size()> choices{};
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        choices[i] = names[i].second;
+    }
+    const std::string chosen = t.choice_or("formulation", "novel", choices);
+    for (const auto& [value, name] : names) {
+        if (chosen == name) {
+            spec.formulation = value;
+        }
+    }
     if (spec.is_coulomb()) {
         read_coulomb(t, spec);
     } else {

@@ -20,7 +20,7 @@
 namespace ifsim::io {
 
 struct InterfaceFormulationSpec {
-    std::string formulation;          // novel | stutz | coulomb
+    InterfaceFormulation formulation = InterfaceFormulation::novel;
     std::string stutz_initial_stress; // stutz only: continuum | normal-contact
     MaterialSpec material;            // novel and stutz: the interface model
     std::string subincrement;         // fixed | adaptive (novel, stutz)
@@ -29,8 +29,12 @@ struct InterfaceFormulationSpec {
     ContactOptions contact; // novel and stutz (interface.ndim left at its default)
     CoulombParams coulomb;  // coulomb
 
-    bool is_coulomb() const { return formulation == "coulomb"; }
+    bool is_coulomb() const { return formulation == InterfaceFormulation::coulomb; }
+    std::string name() const;
 };
+
+// The scene names of the formulations: "novel", "stutz", "coulomb".
+std::string_view formulation_name(InterfaceFormulation f);
 
 // Throws SceneError naming the file and key.
 InterfaceFormulationSpec read_interface_formulation(const TableReader& t);

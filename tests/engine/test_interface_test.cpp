@@ -97,7 +97,7 @@ TEST(InterfaceTest, ConstantNormalStiffnessFollowsTheSpring) {
 // the reversal.
 TEST(InterfaceTest, CoulombSticksAndSlipsExactly) {
     InterfaceTestSpec spec;
-    spec.kind = InterfaceKind::coulomb;
+    spec.contact.interface.formulation = InterfaceFormulation::coulomb;
     spec.coulomb.friction_coefficient = 0.25;
     spec.coulomb.tangential_stiffness = 5.0e4;
     spec.sample_material = l4c(1.0);

@@ -51,7 +51,7 @@ SlideResult slide(int dim) {
     c.slave_faces = "block.bottom";
     c.master_faces = "plate.top";
     c.normal_penalty = 1.0e6;
-    c.coulomb = true;
+    c.options.interface.formulation = InterfaceFormulation::coulomb;
     c.friction = CoulombParams{0.3, 1.0e5};
     solver.add_contact(c);
 

@@ -51,7 +51,7 @@ TEST(BoundaryValueScene, ShippedScenesAreRead) {
     const BoundaryValueScene s = test::parse_boundary_value(cnl_2d);
     ASSERT_EQ(s.contacts.size(), 1u);
     EXPECT_EQ(s.contacts[0].pair.name, "interface");
-    EXPECT_EQ(s.contacts[0].formulation.formulation, "novel");
+    EXPECT_EQ(s.contacts[0].formulation.name(), "novel");
     EXPECT_DOUBLE_EQ(s.contacts[0].formulation.material.roughness, 0.9);
     // Sets are "<body>.<set>"; each body's elements are the element set "<body>".
     EXPECT_EQ(s.mesh.element_set("soil").size(), 1u);

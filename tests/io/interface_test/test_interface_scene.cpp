@@ -112,7 +112,7 @@ TEST(InterfaceScene, ContractExampleIsReadWithItsValues) {
     text = replaced(text, "tangential_stiffness = 6000.0\n", "");
     text = replaced(text, "control = \"constant-stress\"", "control = \"constant-stiffness\"");
     const InterfaceTestScene s = parse_text(text);
-    EXPECT_EQ(s.formulation, "novel");
+    EXPECT_EQ(s.spec.contact.interface.formulation, InterfaceFormulation::novel);
     EXPECT_FALSE(s.coulomb());
     EXPECT_EQ(s.interface_material.model, "hypoplasticity");
     EXPECT_EQ(s.interface_material.parameters, "l4c");
@@ -150,7 +150,7 @@ TEST(InterfaceScene, ContractExampleIsReadWithItsValues) {
 
 TEST(InterfaceScene, LeftOutKeysTakeTheContractDefaults) {
     const InterfaceTestScene s = parse_text(minimal);
-    EXPECT_EQ(s.formulation, "novel");
+    EXPECT_EQ(s.spec.contact.interface.formulation, InterfaceFormulation::novel);
     EXPECT_EQ(s.interface_material.model, "hypoplasticity");
     EXPECT_EQ(s.interface_material.parameters, "l4c");
     EXPECT_DOUBLE_EQ(hypo(s.spec.interface_material).roughness, 0.9);
@@ -274,7 +274,7 @@ parameters = "karlsruhe-sand")"));
     const InterfaceTestScene c = parse_text(with_in(
         minimal, "interface",
         "formulation = \"coulomb\"\nfriction_coefficient = 0.4\ntangential_stiffness = 2e4"));
-    EXPECT_EQ(c.spec.kind, InterfaceKind::coulomb);
+    EXPECT_EQ(c.spec.contact.interface.formulation, InterfaceFormulation::coulomb);
     EXPECT_DOUBLE_EQ(c.spec.coulomb.friction_coefficient, 0.4);
     EXPECT_DOUBLE_EQ(c.spec.coulomb.tangential_stiffness, 2e4);
 
@@ -319,7 +319,7 @@ TEST(InterfaceScene, OverridesReachInterfaceKeys) {
     }
     const InterfaceTestScene s = read_interface_test_scene(table, file);
     EXPECT_DOUBLE_EQ(hypo(s.spec.interface_material).roughness, 1.0);
-    EXPECT_EQ(s.formulation, "stutz");
+    EXPECT_EQ(s.spec.contact.interface.formulation, InterfaceFormulation::stutz);
     EXPECT_EQ(s.spec.interface_state[1], -100.0);
     EXPECT_DOUBLE_EQ(s.spec.height, 0.05);
     EXPECT_DOUBLE_EQ(s.spec.normal_stiffness, 4.0e5);
