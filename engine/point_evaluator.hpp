@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 
 #include "engine/batched_update.hpp"
+#include "engine/perturbation_tangent.hpp"
 
 namespace ifsim {
 
@@ -55,26 +56,22 @@ public:
     Eigen::MatrixXd jacobian(const State& y, const Sym<double>& deps, const std::vector<int>& rows,
                              const std::vector<int>& cols, double base_substeps,
                              double perturbation) {
-        const double delta = perturbation * std::max(voigt::norm(deps), 1.0e-6);
-        const double n_fixed = std::max(1.0, base_substeps);
+        // The fixed scheme of engine/perturbation_tangent.hpp: base and perturbed lanes with
+        // the base update's substeps; the lanes beyond them repeat the base.
+        const PerturbationTangent<M> pt({perturbation, 1.0e-6, true}, cols);
         for (std::size_t i = 0; i < points_.size(); ++i) {
-            Sym<double> d = deps;
-            if (i >= 1 && i <= cols.size()) {
-                d[cols[i - 1]] += delta;
-            }
             points_.set_state(i, y);
-            points_.set_deps(i, d);
-            points_.fixed_substeps()[i] = n_fixed;
+            points_.set_deps(i, deps);
+            points_.fixed_substeps()[i] = std::max(1.0, base_substeps);
         }
+        const double delta = pt.set_increments(points_, 0, deps, base_substeps);
         run(static_cast<long>(cols.size()) + 1);
         Eigen::MatrixXd J(static_cast<Eigen::Index>(rows.size()),
                           static_cast<Eigen::Index>(cols.size()));
-        const State base = points_.trial_state(0);
         for (std::size_t c = 0; c < cols.size(); ++c) {
-            const State pert = points_.trial_state(c + 1);
             for (std::size_t r = 0; r < rows.size(); ++r) {
                 J(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) =
-                    (pert[rows[r]] - base[rows[r]]) / delta;
+                    pt.quotient(points_, 0, rows[r], c, delta, 0.0);
             }
         }
         return J;

@@ -1,5 +1,6 @@
 #include "fem/set_material.hpp"
 #include "engine/parallel_chunks.hpp"
+#include "engine/perturbation_tangent.hpp"
 
 #include <algorithm>
 #include <array>
@@ -76,9 +77,9 @@ public:
             for_points(n, [&](std::size_t i) { rate_tangent(i, comps, options, out); });
             return rep;
         }
-        // Lane layout per point: [base (fixed scheme only)] then one lane per component.
-        const std::size_t first = ts.fixed_substeps ? 1 : 0;
-        const std::size_t L = first + nc;
+        const PerturbationTangent<M> pt({ts.perturbation, ts.perturbation_floor, ts.fixed_substeps},
+                                        comps);
+        const std::size_t L = pt.lanes_per_point();
         if (!lanes_ || lanes_->size() != n * L) {
             lanes_.emplace(n * L);
             lanes_stale_ = true;
@@ -101,44 +102,22 @@ public:
             for (int j = 0; j < 6; ++j) {
                 d[j] = mp_.deps(j)[i];
             }
-            const double delta = ts.perturbation * std::max(voigt::norm(d), ts.perturbation_floor);
-            delta_[i] = delta;
-            const double fixed = ts.fixed_substeps ? std::max(1.0, mp_.substeps()[i]) : 0.0;
-            for (std::size_t c = 0; c < L; ++c) {
-                const std::size_t lane = i * L + c;
-                for (int j = 0; j < 6; ++j) {
-                    lp.deps(j)[lane] = d[j];
-                }
-                if (c >= first) {
-                    lp.deps(comps[c - first])[lane] += delta;
-                }
-                lp.fixed_substeps()[lane] = fixed;
-            }
+            delta_[i] = pt.set_increments(lp, i * L, d, mp_.substeps()[i]);
         });
         batched_update(lp, params_, options);
         rep.evaluations = static_cast<long>(n * L);
         fell_back_.assign(n, 0);
         for_points(n, [&](std::size_t i) {
-            bool failed = false;
-            for (std::size_t c = 0; c < L; ++c) {
-                const std::size_t lane = i * L + c;
-                failed = failed || lp.status()[lane] < -0.5;
-                if (!ts.fixed_substeps) { // the same step sequence as the base, or no quotient
-                    failed = failed || lp.substeps()[lane] != mp_.substeps()[i] ||
-                             lp.rejected()[lane] != mp_.rejected()[i];
-                }
-            }
-            if (failed) {
+            if (!pt.usable(lp, i * L, mp_.substeps()[i], mp_.rejected()[i])) {
                 fell_back_[i] = 1;
                 rate_tangent(i, comps, options, out);
                 return;
             }
             double* Di = out + i * nc * nc;
             for (std::size_t r = 0; r < nc; ++r) {
-                const double* col = lp.trial(comps[r]);
-                const double base = ts.fixed_substeps ? col[i * L] : mp_.trial(comps[r])[i];
+                const double base = mp_.trial(comps[r])[i];
                 for (std::size_t c = 0; c < nc; ++c) {
-                    Di[r * nc + c] = (col[i * L + first + c] - base) / delta_[i];
+                    Di[r * nc + c] = pt.quotient(lp, i * L, comps[r], c, delta_[i], base);
                 }
             }
         });
