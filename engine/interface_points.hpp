@@ -46,6 +46,9 @@ public:
             throw std::invalid_argument(fmt::format(
                 "interface state of model {} needs {} values, got {}", Mi::name, NS, y0.size()));
         }
+        if (opt.interface.formulation == InterfaceFormulation::coulomb) {
+            throw std::invalid_argument("Coulomb friction has no continuum interface model");
+        }
         StateVec<double, NS> y{};
         std::copy(y0.begin(), y0.end(), y.begin());
         points_.set_state(0, y);

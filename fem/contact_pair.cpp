@@ -81,10 +81,14 @@ std::unique_ptr<ContactPair> make_contact_pair(const Mesh& mesh, ContactPairSpec
             using P = std::decay_t<decltype(p)>;
             using M = typename model_of<P>::type;
             if constexpr (!ModelEntry<M>::interface_model) {
-                throw std::invalid_argument(
-                    fmt::format("contact pair '{}': {} cannot be an interface model (engine/"
-                                "model_registry.hpp); expected hypoplasticity or sanisand",
-                                spec.name, M::name));
+                std::string usable;
+                for (std::string_view n : model_names(true)) {
+                    usable += fmt::format("{}{}", usable.empty() ? "" : " or ", n);
+                }
+                throw std::invalid_argument(fmt::format(
+                    "contact pair '{}': {} cannot be an interface model (no void ratio and no "
+                    "state for Algorithm 1); expected {}",
+                    spec.name, M::name, usable));
             } else {
                 return std::make_unique<InterfacePair<M>>(mesh, spec, p);
             }

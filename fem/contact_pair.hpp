@@ -127,7 +127,12 @@ public:
     const ContactPairCounters& counters() const { return counters_; }
     std::vector<std::array<int, 2>> couplings() const { return kinematics().couplings(); }
 
+    // While probing (the solver's first guesses), an evaluation that fails leaves no lasting
+    // trace: no relaxed targets, no failure counted.
+    void set_probing(bool on) { probing_ = on; }
+
 protected:
+    bool probing_ = false;
     ContactPairTimers timers_;
     ContactPairCounters counters_;
 };

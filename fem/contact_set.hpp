@@ -57,6 +57,11 @@ public:
     // Implicit gather: the largest relative change of a target over the pairs.
     double regather(const ElementStresses& trial);
     void commit();
+    void set_probing(bool on) {
+        for (auto& c : pairs_) {
+            c->set_probing(on);
+        }
+    }
 
     ContactSetCounters counters() const;
     ContactPairTimers timers() const; // summed over the pairs

@@ -27,6 +27,11 @@ public:
             throw std::invalid_argument(
                 fmt::format("contact pair '{}': no initial interface state", spec_.name));
         }
+        if (spec_.options.interface.formulation == InterfaceFormulation::coulomb) {
+            throw std::invalid_argument(
+                fmt::format("contact pair '{}': Coulomb friction has no continuum interface model",
+                            spec_.name));
+        }
         spec_.options.interface.ndim = dim_;
         k_lo_ = 1.0 - interface_friction_sine(params_);
         base_only_ = spec_.options;
@@ -51,7 +56,7 @@ public:
             PhaseTimer timer(timers_.kernels);
             rep = engine_.update(points_, params_, defer_ ? base_only_ : spec_.options);
         }
-        while (!rep.ok() && relax_failed_points()) {
+        while (!rep.ok() && !probing_ && relax_failed_points()) {
             PhaseTimer timer(timers_.kernels);
             count(rep);
             ++counters_.relaxed_reruns;
@@ -60,7 +65,7 @@ public:
         PhaseTimer timer(timers_.scatter);
         count(rep);
         if (!rep.ok()) {
-            ++counters_.failed_evaluations;
+            counters_.failed_evaluations += probing_ ? 0 : 1;
             const std::size_t i = rep.first_failed;
             const ContactKinematics& k = kin_->point(i);
             error = fmt::format(

@@ -35,7 +35,9 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
     if (!contacts_.empty()) {
         begin_contacts(false);
     }
-    if (!first_guess(t_begin, t_end, error) || !residual_pass(t_end, du_, error)) {
+    bool residual_current = false;
+    first_guess(t_begin, t_end, residual_current);
+    if (!residual_current && !residual_pass(t_end, du_, error)) {
         return false;
     }
     const double tol_r = settings_.residual_tolerance;
@@ -90,7 +92,10 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
     }
 }
 
-bool StaticSolver::first_guess(double t_begin, double t_end, std::string& error) {
+// The residual at the guess is left current (residual_current) when the guess was the last
+// evaluation, so the increment does not evaluate it again.
+void StaticSolver::first_guess(double t_begin, double t_end, bool& residual_current) {
+    residual_current = false;
     std::fill(du_.begin(), du_.end(), 0.0);
     for (std::size_t k = 0; k < dofs_.prescribed.size(); ++k) {
         const auto d = static_cast<std::size_t>(dofs_.prescribed[k]);
@@ -104,40 +109,47 @@ bool StaticSolver::first_guess(double t_begin, double t_end, std::string& error)
                 du_[d] = scale * du_last_[d];
             }
         }
-        return true;
+        return;
     }
     if (predictor == Predictor::zero) {
-        return true;
+        return;
     }
-    if (!tangent_predictor(t_end, error)) {
-        if (!error.empty()) {
-            return false;
-        }
-        // A singular tangent at the committed state (e.g. a contact just touching): no guess.
+    // The predictor's evaluations are probes: a contact point that fails in one of them must
+    // not relax its targets for the increment that follows.
+    contacts_.set_probing(true);
+    std::string why_not;
+    const bool predicted = tangent_predictor(t_end, why_not);
+    if (!predicted) {
+        contacts_.set_probing(false);
+        // A singular tangent at the committed state (e.g. a contact just touching) or a point
+        // that fails there: no guess; the increment's own evaluation reports real failures.
         zero_free_dofs();
         ++counters_.predictor_fallbacks;
-        return true;
+        return;
     }
     if (predictor == Predictor::extrapolated) {
         // The linearisation can be far off over a strongly non-linear step (a coarse shear
         // increment: the interface predicted to stick drags the soil 6 mm): keep the zero
-        // guess when its residual is smaller.
+        // guess when its residual is smaller. Both residuals carry the same external force,
+        // so their norms compare directly.
         std::string unused;
-        const double tangent_rel = residual_pass(t_end, du_, unused)
-                                       ? norm2(residual_) / reference_force_
-                                       : std::numeric_limits<double>::infinity();
         predicted_du_.assign(du_.begin(), du_.end());
         zero_free_dofs();
-        const double zero_rel = residual_pass(t_end, du_, unused)
-                                    ? norm2(residual_) / reference_force_
-                                    : std::numeric_limits<double>::infinity();
-        if (tangent_rel < zero_rel) {
-            du_.assign(predicted_du_.begin(), predicted_du_.end());
+        const double zero_norm = residual_pass(t_end, du_, unused)
+                                     ? norm2(residual_)
+                                     : std::numeric_limits<double>::infinity();
+        du_.assign(predicted_du_.begin(), predicted_du_.end());
+        const bool evaluated = residual_pass(t_end, du_, unused);
+        const double tangent_norm =
+            evaluated ? norm2(residual_) : std::numeric_limits<double>::infinity();
+        if (tangent_norm <= zero_norm) {
+            residual_current = evaluated;
         } else {
+            zero_free_dofs();
             ++counters_.predictor_rejections;
         }
     }
-    return true;
+    contacts_.set_probing(false);
 }
 
 void StaticSolver::zero_free_dofs() {
@@ -160,9 +172,8 @@ bool StaticSolver::tangent_predictor(double t_end, std::string& error) {
     tangent_pass(du_, &coupling);
     {
         PhaseTimer timer(timers_.solve);
-        std::string singular; // not an error of the increment: the caller falls back
-        if (!linear_.factorise(system_->matrix(), system_->pattern_id(), singular) ||
-            !linear_.solve(predictor_rhs_.data(), correction_.data(), singular)) {
+        if (!linear_.factorise(system_->matrix(), system_->pattern_id(), error) ||
+            !linear_.solve(predictor_rhs_.data(), correction_.data(), error)) {
             return false;
         }
     }
@@ -319,7 +330,8 @@ StageResult StaticSolver::run_stage(const Stage& stage, const IncrementCallback&
                 return result;
             }
             ++counters_.cuts;
-            dt_last_ = 0.0; // the retry starts from zero: the extrapolation may have misled
+            dt_last_ =
+                0.0; // no extrapolation for the retry: it may have misled (tangent predictor)
             ++depth;
             streak = 0;
         }

@@ -65,7 +65,7 @@ struct SolverCounters {
     double worst_accepted_residual = 0.0; // largest relative residual of an accepted increment
     long increment_growths = 0;           // increments doubled back towards the nominal step
     long predictor_solves = 0;            // tangent predictors (one solve each)
-    long predictor_fallbacks = 0;         // tangent predictors with a singular tangent (zero guess)
+    long predictor_fallbacks = 0;         // tangent predictors not formed (zero guess)
     long predictor_rejections = 0;    // tangent guesses whose residual was above the zero guess's
     long gathers = 0;                 // re-gathers of the in-plane targets (implicit gather)
     double worst_gather_change = 0.0; // largest target change left in an accepted increment
@@ -170,11 +170,11 @@ private:
     bool solve_increment(double t_begin, double t_end, IncrementInfo& info, std::string& error,
                          const IncrementCallback& on_iteration);
     // First guess of the increment: prescribed DOFs at their new values, free DOFs by the
-    // settings' predictor.
-    bool first_guess(double t_begin, double t_end, std::string& error);
+    // settings' predictor; residual_current when the residual of the guess is already formed.
+    void first_guess(double t_begin, double t_end, bool& residual_current);
     // First guess of the free DOFs by the tangent at the committed state (du_ in and out:
-    // the prescribed DOFs set, the free ones zero on entry). False with an empty error when
-    // that tangent cannot be factorised.
+    // the prescribed DOFs set, the free ones zero on entry). False (with the reason) when
+    // the committed state cannot be evaluated or its tangent not factorised.
     bool tangent_predictor(double t_end, std::string& error);
     void zero_free_dofs(); // du_: prescribed_du_ on prescribed DOFs, zero elsewhere
     // One Newton step from du_: solve with the tangent at du_, then backtrack on the residual
