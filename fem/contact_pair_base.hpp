@@ -15,7 +15,7 @@
 #include <fmt/format.h>
 
 #include "fem/contact_pair.hpp"
-#include "fem/mortar_contact.hpp"
+#include "fem/mortar_kinematics.hpp"
 #include "fem/phase_timer.hpp"
 
 namespace ifsim::fem::detail {
@@ -87,10 +87,7 @@ inline std::size_t slave_point_count(const Mesh& mesh, const ContactPairSpec& sp
 
 inline std::unique_ptr<MortarKinematics> make_kinematics(const Mesh& mesh,
                                                          const ContactPairSpec& spec) {
-    if (mesh.dim() == 2) {
-        return std::make_unique<MortarContact<2>>(mesh, spec.slave_faces, spec.master_faces);
-    }
-    return std::make_unique<MortarContact<3>>(mesh, spec.slave_faces, spec.master_faces);
+    return make_mortar_contact(mesh, spec.slave_faces, spec.master_faces);
 }
 
 // What every pair shares: kinematics, engine frames, the penalty with its offsets, and the

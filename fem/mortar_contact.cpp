@@ -281,4 +281,13 @@ std::vector<std::array<int, 2>> MortarContact<D>::couplings() const {
 template class MortarContact<2>;
 template class MortarContact<3>;
 
+std::unique_ptr<MortarKinematics> make_mortar_contact(const Mesh& mesh,
+                                                      const std::string& slave_faces,
+                                                      const std::string& master_faces) {
+    if (mesh.dim() == 2) {
+        return std::make_unique<MortarContact<2>>(mesh, slave_faces, master_faces);
+    }
+    return std::make_unique<MortarContact<3>>(mesh, slave_faces, master_faces);
+}
+
 } // namespace ifsim::fem

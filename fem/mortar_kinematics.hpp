@@ -78,4 +78,10 @@ public:
     virtual const ProjectionCounters& projection_counters() const = 0;
 };
 
+// MortarContact<2> or <3> (fem/mortar_contact.hpp) by the mesh's dimension. The pairs see the
+// interface only: which concrete class it is stays in mortar_contact.cpp.
+std::unique_ptr<MortarKinematics> make_mortar_contact(const Mesh& mesh,
+                                                      const std::string& slave_faces,
+                                                      const std::string& master_faces);
+
 } // namespace ifsim::fem
