@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <random>
 
-#include "engine/model_registry.hpp"
 #include "engine/material_points.hpp"
+#include "engine/model_registry.hpp"
 
 namespace ifsim {
 

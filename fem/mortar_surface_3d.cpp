@@ -226,8 +226,7 @@ V2 MortarSurface3D::across(int f, int k, const V2& xi, int g) const {
 // the smoothed normal (Eq. A17). Where that Jacobian is not positive (far from a strongly
 // curved surface) the Gauss-Newton matrix (P x_xia) . (P x_xib) keeps the step a descent one.
 // At most half a face per step.
-std::array<double, 2> MortarSurface3D::newton_step(const Local& L, const Vec3& p,
-                                                    bool& converged) {
+std::array<double, 2> MortarSurface3D::newton_step(const Local& L, const Vec3& p, bool& converged) {
     constexpr double tol = 1e-13;
     const Vec3 g = axpy(-1.0, p, L.x);
     const double ng = dot(L.n, g);

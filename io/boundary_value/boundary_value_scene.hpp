@@ -37,8 +37,8 @@ struct BoundaryValueScene {
     std::map<std::string, BodyMaterial> materials; // by body name
     fem::Mesh mesh;
     fem::SolverSettings settings;
-    std::string linear_solver; // umfpack | klu
-    std::string tangent;       // perturbation | fixed-substeps | rate
+    std::string linear_solver;              // umfpack | klu
+    std::string tangent;                    // perturbation | fixed-substeps | rate
     std::string predictor = "extrapolated"; // extrapolated | tangent | zero
     // [interface] (one pair, named "interface") or the [[contact]] entries, in order.
     std::vector<BoundaryValueInterface> contacts;

@@ -11,8 +11,8 @@
 #include "engine/contact_update.hpp"
 #include "engine/coulomb_contact.hpp"
 #include "engine/sample_states.hpp"
-#include "io/output/summary_writer.hpp"
 #include "io/cli/thread_limit.hpp"
+#include "io/output/summary_writer.hpp"
 
 namespace ifsim::io {
 

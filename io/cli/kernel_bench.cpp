@@ -9,8 +9,8 @@
 #include "engine/model_registry.hpp"
 #include "engine/sample_states.hpp"
 #include "io/cli/interface_kernel_bench.hpp"
-#include "io/output/summary_writer.hpp"
 #include "io/cli/thread_limit.hpp"
+#include "io/output/summary_writer.hpp"
 #include "kernels/parameter_sets.hpp"
 
 namespace ifsim::io {

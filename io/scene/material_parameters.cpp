@@ -164,9 +164,8 @@ MaterialSpec read_material(const TableReader& material) {
     const std::vector<std::string_view> models = model_names();
     const std::string model = material.choice_or("model", "", models);
     const std::vector<std::string_view> interface_models = model_names(true);
-    const bool interface_model =
-        std::find(interface_models.begin(), interface_models.end(), model) !=
-        interface_models.end();
+    const bool interface_model = std::find(interface_models.begin(), interface_models.end(),
+                                           model) != interface_models.end();
     if (!interface_model && material.has("roughness")) {
         material.fail("roughness", "not used by " + model + "; expected no roughness key");
     }

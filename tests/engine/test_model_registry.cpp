@@ -38,8 +38,7 @@ TEST(ModelRegistry, EveryEntryMatchesItsKernel) {
     EXPECT_EQ(model_names().size(), names.size());
     // Interface models carry a state through Algorithm 1: the elastic model is not one.
     const auto interface_models = model_names(true);
-    EXPECT_EQ(std::count(interface_models.begin(), interface_models.end(), LinearElastic::name),
-              0);
+    EXPECT_EQ(std::count(interface_models.begin(), interface_models.end(), LinearElastic::name), 0);
     EXPECT_TRUE(model_sets("no-such-model").empty());
 }
 

@@ -104,8 +104,8 @@ TEST(Effects, ConstitutiveWorkIsCountedPerLane) {
         // increment) one at zero increment and one at each guess it compares; a kept tangent
         // guess is the increment's own evaluation, a rejected one is evaluated again.
         EXPECT_EQ(c.predictor_solves, 1);
-        const long evaluations = c.increments + c.newton_iterations + 1 +
-                                 2 * c.predictor_solves + c.predictor_rejections;
+        const long evaluations = c.increments + c.newton_iterations + 1 + 2 * c.predictor_solves +
+                                 c.predictor_rejections;
         EXPECT_EQ(c.increments, 2);
         if (kind == TangentKind::perturbation) {
             // 6 adaptive perturbed lanes per point, Newton iteration and predictor (3D).
