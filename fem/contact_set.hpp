@@ -15,16 +15,9 @@
 
 namespace ifsim::fem {
 
-struct ContactSetCounters {
+// The pairs' counters summed, and their pairings.
+struct ContactSetCounters : ContactPairCounters {
     long pairings = 0;
-    long evaluations = 0; // engine updates (one per residual evaluation and pair)
-    double point_updates = 0.0;
-    double lanes = 0.0;
-    double subincrements = 0.0;
-    double constitutive_evaluations = 0.0;
-    long failures = 0;
-    long relaxed_reruns = 0;
-    double relaxed_point_updates = 0.0;
 };
 
 class ContactSet {

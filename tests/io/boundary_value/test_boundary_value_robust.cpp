@@ -141,5 +141,31 @@ TEST(ContactOpening, NovelClosesAgainAfterOpening) {
     EXPECT_GT(test::summary(dir)["counters"]["predictor_solves"].get<long>(), 0);
 }
 
+// The first guess is only a guess: the tangent predictor at every increment, the default
+// (extrapolated, tangent predictor at stage starts) and the zero guess end at the same
+// converged state within the Newton tolerance's effect on the path, and each mode is used.
+TEST(Predictor, EveryFirstGuessEndsAtTheSameState) {
+    std::vector<double> final_shear;
+    for (const char* mode : {"extrapolated", "tangent", "zero"}) {
+        const fs::path dir =
+            run_box(std::string("predictor-") + mode,
+                    short_path({std::string("solver.predictor=\"") + mode + "\""}));
+        const auto h = test::read_history(dir);
+        final_shear.push_back(h.number(h.rows.size() - 1, "t_t1"));
+        const auto c = test::summary(dir)["counters"];
+        const long solves = c["predictor_solves"].get<long>();
+        if (std::string(mode) == "tangent") {
+            EXPECT_EQ(solves, c["increments"].get<long>()) << mode; // one per increment
+        } else if (std::string(mode) == "zero") {
+            EXPECT_EQ(solves, 0) << mode;
+        } else {
+            EXPECT_GE(solves, 2) << mode; // the two stage starts
+            EXPECT_LT(solves, c["increments"].get<long>()) << mode;
+        }
+    }
+    EXPECT_NEAR(final_shear[1], final_shear[0], 1.0e-3 * std::abs(final_shear[0]));
+    EXPECT_NEAR(final_shear[2], final_shear[0], 1.0e-3 * std::abs(final_shear[0]));
+}
+
 } // namespace
 } // namespace ifsim::io
