@@ -203,10 +203,11 @@ private:
     double lane_traction(std::size_t l, int comp) const {
         using namespace detail::lane_col;
         if (lanes_.col(open)[l] > 0.5) {
-            // Open (t_N above -open_threshold): the penalty's normal traction, and the kept
-            // state's shear scaled with t_N / sigma_N (its stress ratio), so that the traction
-            // fades to zero with t_N and meets the closed branch near the threshold instead of
-            // jumping (a jump makes the global Newton chatter between open and closed).
+            // Open (t_N above -open_threshold): the penalty's normal traction, and the band's
+            // shear scaled with t_N / sigma_N. A touching point's band was integrated at
+            // sigma_N = -threshold (interface_begin), so the traction fades to zero with t_N
+            // and equals the closed branch's at the threshold (a jump there makes the global
+            // Newton chatter between open and closed); a separated one (t_N >= 0) gives 0.
             const double tn = std::min(0.0, lanes_.col(t_N)[l]);
             if (comp == 0) {
                 return tn;
@@ -305,12 +306,18 @@ private:
         const Sym<double> dir = {0.0, 0.0, 0.0, std::atan(dgt[0] / d_s), std::atan(dgt[1] / d_s),
                                  0.0};
         const auto cols = M::template rate_stiffness<double>(mp, opt.interface.model, y, dir);
+        // An open lane's shear is the band's scaled by t_N / sigma_N (lane_traction).
         const bool open_lane = lanes_.col(open)[i] > 0.5;
+        const double sigma_N = lanes_.col(state + 0)[i];
+        const double fade = !open_lane ? 1.0
+                            : sigma_N < 0.0
+                                ? std::clamp(std::min(0.0, lanes_.col(t_N)[i]) / sigma_N, 0.0, 1.0)
+                                : 0.0;
         double dtau[2][2];
         for (int a = 0; a < 2; ++a) {
             for (int b2 = 0; b2 < 2; ++b2) {
                 const double cg = std::cos(dir[3 + b2]);
-                dtau[a][b2] = open_lane ? 0.0 : cols[3 + b2][3 + a] * 0.5 * cg * cg / d_s;
+                dtau[a][b2] = fade * cols[3 + b2][3 + a] * 0.5 * cg * cg / d_s;
             }
         }
         const double k_N = cp.input(contact_col::k_N)[i]; // an open lane keeps the penalty

@@ -107,11 +107,17 @@ Algorithm1Lane<T, M::n_state> interface_begin(const InterfaceSettings& s,
     c.below = !(d_s_eq26 > band_floor<T>(s));
     const Mask band_ok = s.clamp_band ? Mask(true) : !c.below;
     const T d_s = simd::select(c.below, band_floor<T>(s), d_s_eq26);
-    // Contact open (no compression to carry): the point keeps its state and transmits nothing.
-    // The threshold sits above the models' pressure floor so that an almost open contact is
-    // not driven into the floor by the in-plane stresses (K0 < 1 lowers p below t_N).
+    // Contact open (t_N above -open_threshold). Below the threshold the models' stiffness
+    // vanishes with the stress and Algorithm 1 cannot follow t_N, so a touching point
+    // (-threshold < t_N < 0) integrates its band at the targets scaled up homothetically to
+    // t_N = -threshold, and the caller scales its tractions back down by |t_N| / threshold:
+    // the same band as at the threshold (continuous there), its shear still responding to
+    // slip. A separated point (t_N >= 0) keeps its state and transmits nothing.
     c.open = in.t_N > -s.open_threshold;
-    c.run = c.finite_in && band_ok && !c.open;
+    const Mask separated = !(in.t_N < 0.0);
+    c.run = c.finite_in && band_ok && !separated;
+    const T up =
+        simd::select(c.open && !separated, T(s.open_threshold) / simd::abs(in.t_N), T(1.0));
 
     // Eq. 25: tan(delta gamma) = delta g_T / d_s.
     const T safe_ds = simd::select(band_ok, d_s, T(s.shear_band_thickness));
@@ -123,7 +129,13 @@ Algorithm1Lane<T, M::n_state> interface_begin(const InterfaceSettings& s,
     // follow a straight path from the start values (sigma_N, sigma_p1, sigma_p2 of the converged
     // state), so a change of t_N or of the continuum stress is spread over the sub-increments
     // instead of being forced into the first one.
-    c.target_end = {in.t_N, in.s_p1, in.s_p2};
+    // A touching band keeps the in-plane stress ratio of its state (the continuum's in-plane
+    // stresses, scaled up with t_N, would move its targets with every change of t_N: a band
+    // at its limit surface then answers a perturbation of t_N with a kink).
+    const T touching_scale = T(s.open_threshold) / simd::max(simd::abs(st.y[0]), T(1.0e-300));
+    const Mask touching = c.open && !separated;
+    c.target_end = {in.t_N * up, simd::select(touching, st.y[1] * touching_scale, in.s_p1),
+                    simd::select(touching, st.y[2] * touching_scale, in.s_p2)};
     c.target_start = {st.y[0], st.y[1], st.y[2]};
     // Sub-increments needed for the change of the normal targets: at most max_normal_change of
     // the stress per sub-increment (a change of t_N without shear would otherwise be one step).

@@ -57,9 +57,9 @@ void expect_defined(const HState& before, const HState& after, const InterfaceSt
 
 } // namespace
 
-// Contact opens when t_N > -p_min: the point keeps its state and reports open; when it closes
-// again the update resumes from the kept state.
-TEST(InterfaceHardCases, OpeningKeepsStateAndClosingResumes) {
+// A separated contact (t_N >= 0) keeps its state and reports open; when it closes again the
+// update resumes from the kept state.
+TEST(InterfaceHardCases, SeparatedContactKeepsStateAndClosingResumes) {
     const auto mp = l4c(0.9);
     InterfaceSettings s;
     HState st = start_state();
@@ -68,8 +68,7 @@ TEST(InterfaceHardCases, OpeningKeepsStateAndClosingResumes) {
                                              stats);
     ASSERT_EQ(stats.status, lane_status::ok);
     const HState loaded = st;
-    // t_N -> 0 and positive (tension), and just above -p_min: open, nothing changes.
-    for (const double t_N : {0.0, 25.0, -0.5 * s.model.min_pressure}) {
+    for (const double t_N : {0.0, 25.0}) {
         HState open_st = loaded;
         interface_update<Hypoplasticity, double>(mp, s, open_st,
                                                  {t_N, 2.0e-5, 0.0, -50.0, -50.0, 0.0}, stats);
@@ -90,6 +89,58 @@ TEST(InterfaceHardCases, OpeningKeepsStateAndClosingResumes) {
     const double d_s = s.shear_band_thickness * (1.0 + loaded.eps_n);
     EXPECT_NEAR(closed.gamma1, loaded.gamma1 + std::atan(1.0e-5 / d_s), 1.0e-13);
     EXPECT_NEAR(closed.eps_n, loaded.eps_n, 5.0e-3);
+}
+
+// A touching contact (-open_threshold < t_N < 0) reports open and shears its band at
+// sigma_N = -open_threshold with the in-plane stress ratio of its state; the caller scales the
+// traction by |t_N| / threshold, which meets the closed branch at the threshold. Both
+// formulations.
+TEST(InterfaceHardCases, TouchingContactShearsItsBandAtTheThreshold) {
+    const auto mp = l4c(0.9);
+    for (const bool stutz : {false, true}) {
+        InterfaceSettings s;
+        s.formulation = stutz ? InterfaceFormulation::stutz : InterfaceFormulation::novel;
+        const double thr = s.open_threshold;
+        HState st = start_state(-2.0);
+        InterfaceStats<double> stats;
+        interface_update<Hypoplasticity, double>(mp, s, st, {-1.2, 2.0e-5, 0.0, -0.8, -0.7, 0.0},
+                                                 stats);
+        ASSERT_EQ(stats.status, lane_status::ok);
+        ASSERT_EQ(stats.open, 0.0);
+        const HState before = st;
+        const double dg = 1.0e-5;
+        // Just above and just below the threshold: the same band, tractions scaled alike.
+        HState touching = before;
+        interface_update<Hypoplasticity, double>(mp, s, touching,
+                                                 {-0.999 * thr, dg, 0.0, -0.8, -0.7, 0.0}, stats);
+        ASSERT_EQ(stats.status, lane_status::ok);
+        EXPECT_EQ(stats.open, 1.0);
+        EXPECT_GT(stats.subincrements, 0.0);
+        EXPECT_NEAR(touching.y[0], -thr, s.tolerance * thr);
+        const double d_s = s.shear_band_thickness * (1.0 + before.eps_n);
+        EXPECT_NEAR(touching.gamma1, before.gamma1 + std::atan(dg / d_s), 1.0e-13);
+        if (!stutz) { // the novel band keeps its in-plane stress ratio
+            EXPECT_NEAR(touching.y[1] / touching.y[0], before.y[1] / before.y[0], 1.0e-6);
+            EXPECT_NEAR(touching.y[2] / touching.y[0], before.y[2] / before.y[0], 1.0e-6);
+        }
+        // Closed with the in-plane targets the touching band took (the novel formulation's
+        // continuum targets may differ from them: a jump of sigma_p there, Eq. 13).
+        const double up = 1.001 * thr / std::abs(before.y[0]);
+        HState closed = before;
+        interface_update<Hypoplasticity, double>(
+            mp, s, closed, {-1.001 * thr, dg, 0.0, before.y[1] * up, before.y[2] * up, 0.0}, stats);
+        ASSERT_EQ(stats.status, lane_status::ok);
+        EXPECT_EQ(stats.open, 0.0);
+        const double tau_touching = 0.999 * touching.y[3]; // |t_N| / threshold
+        EXPECT_NEAR(tau_touching, closed.y[3], 0.02 * std::abs(closed.y[3])) << stutz;
+        // The shear responds to the slip (an open branch without it leaves the tangent in
+        // slip nil): a reversed slip lowers it.
+        HState reversed = before;
+        interface_update<Hypoplasticity, double>(mp, s, reversed,
+                                                 {-0.5 * thr, -dg, 0.0, -0.8, -0.7, 0.0}, stats);
+        ASSERT_EQ(stats.status, lane_status::ok);
+        EXPECT_LT(reversed.y[3], touching.y[3] - 0.01 * std::abs(touching.y[3])) << stutz;
+    }
 }
 
 // A reversal of the tangential gap increment in every one of 300 increments (CNL at -100 kPa,
