@@ -63,6 +63,9 @@ protected:
             points_.set_traction(i, 0.0, 0.0);
         }
     }
+    void add_point_state(std::size_t i, ContactPointRecord& r) const override {
+        r.slipping = points_.output(coulomb_col::slipping)[i];
+    }
 
 private:
     CoulombContactPoints points_;

@@ -20,6 +20,7 @@
 
 #include <array>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -98,6 +99,27 @@ struct ContactResultant {
     double sigma_p1 = 0.0, sigma_p2 = 0.0; // interface in-plane stresses
 };
 
+// One contact point after the last converged increment, for field output. What a pair does
+// not have (a Coulomb pair's band) is NaN.
+struct ContactPointRecord {
+    int slave_element = -1;          // the slave face's element
+    std::array<double, 3> natural{}; // natural coordinates of the point in that element
+    bool active = false;             // projects inside the master surface
+    double weight = 0.0;             // Gauss weight times surface Jacobian (area share)
+    double t_N = 0.0;                // normal traction, negative in compression
+    std::array<double, 3> shear{};   // shear traction on the slave body, global axes
+    double open = 0.0;               // 1: open (t_N above the opening threshold or >= 0)
+    double slipping = std::numeric_limits<double>::quiet_NaN(); // Coulomb: 1 while sliding
+    double sigma_p1 = std::numeric_limits<double>::quiet_NaN(); // interface in-plane stresses
+    double sigma_p2 = std::numeric_limits<double>::quiet_NaN();
+    double eps_N = std::numeric_limits<double>::quiet_NaN(); // interface strains (Eqs. 18-20)
+    double eps_p1 = std::numeric_limits<double>::quiet_NaN();
+    double eps_p2 = std::numeric_limits<double>::quiet_NaN();
+    double band_thickness = std::numeric_limits<double>::quiet_NaN(); // d_s (Eq. 26)
+    double void_ratio = std::numeric_limits<double>::quiet_NaN();     // of the interface zone
+    double subincrements = std::numeric_limits<double>::quiet_NaN();  // Algorithm 1, last call
+};
+
 // Continuum stress (Voigt) at the integration points of an element, solver order.
 using ElementStresses = std::function<void(int element, std::vector<Voigt6>& stresses)>;
 
@@ -123,6 +145,8 @@ public:
     virtual double regather(const ElementStresses&) { return 0.0; }
 
     virtual ContactResultant resultant() const = 0;
+    // Every point of the pair in the state of the last converged increment.
+    virtual std::vector<ContactPointRecord> point_records() const = 0;
     const ContactPairTimers& timers() const { return timers_; }
     const ContactPairCounters& counters() const { return counters_; }
     std::vector<std::array<int, 2>> couplings() const { return kinematics().couplings(); }

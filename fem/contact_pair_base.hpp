@@ -185,11 +185,37 @@ public:
         return r;
     }
 
+    std::vector<ContactPointRecord> point_records() const override {
+        std::vector<ContactPointRecord> out(kin_->n_points());
+        const bool evaluated = traction_.size() == kin_->n_points();
+        for (std::size_t i = 0; i < out.size(); ++i) {
+            const ContactKinematics& k = kin_->point(i);
+            ContactPointRecord& r = out[i];
+            r.slave_element = k.slave_element;
+            r.natural = k.slave_natural;
+            r.active = k.active;
+            r.weight = k.weight;
+            if (evaluated && k.active) {
+                const ContactTraction& t = traction_[i];
+                r.t_N = t.t_N;
+                for (std::size_t d = 0; d < 3; ++d) {
+                    r.shear[d] = t.tau[0] * k.t1[d] + t.tau[1] * k.t2[d];
+                }
+            }
+            r.open = (!k.active || r.t_N >= 0.0) ? 1.0 : 0.0;
+            if (evaluated) {
+                add_point_state(i, r);
+            }
+        }
+        return out;
+    }
+
 protected:
     virtual bool needs_stress() const = 0; // s_p1, s_p2 every increment
     virtual void refresh_jacobian() {}     // Jacobian columns of the last evaluate() if deferred
     virtual void start(const std::vector<Voigt6>& local_stress) = 0;
     virtual void add_state_means(std::size_t, double, ContactResultant&) const {}
+    virtual void add_point_state(std::size_t, ContactPointRecord&) const {}
     virtual void new_increment() {}
 
     // Continuum stress at each slave point (Eq. 14) rotated into its engine frame (Eq. 15).

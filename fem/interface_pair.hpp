@@ -251,6 +251,19 @@ protected:
         r.sigma_p2 += w * points_.committed(2)[i];
     }
 
+    void add_point_state(std::size_t i, ContactPointRecord& r) const override {
+        constexpr int NS = M::n_state;
+        r.open = std::max(r.open, points_.output(contact_col::open)[i]);
+        r.sigma_p1 = points_.committed(1)[i];
+        r.sigma_p2 = points_.committed(2)[i];
+        r.eps_N = points_.committed(NS + contact_state::eps_n)[i];
+        r.eps_p1 = points_.committed(NS + contact_state::eps_p1)[i];
+        r.eps_p2 = points_.committed(NS + contact_state::eps_p2)[i];
+        r.band_thickness = spec_.options.interface.shear_band_thickness * (1.0 + r.eps_N);
+        r.void_ratio = points_.committed(state_index::void_ratio)[i];
+        r.subincrements = points_.output(contact_col::subincrements)[i];
+    }
+
 private:
     typename M::Params params_;
     ContactOptions base_only_;  // the spec's options without the Eq. 37 lanes

@@ -8,7 +8,8 @@ packages=(g++ cmake ninja-build git pkg-config
           libeigen3-dev libtbb-dev libxsimd-dev libsuitesparse-dev
           libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
           libgtest-dev libgmock-dev libbenchmark-dev
-          python3 python3-matplotlib
+          zlib1g-dev
+          python3 python3-matplotlib python3-meshio python3-vtk9  # field files read back in tests
           gmsh)  # meshes of scripts/study_fe_meshes.py from scenes/meshes/*.geo
 
 missing=()

@@ -5,9 +5,11 @@
 #include <cmath>
 #include <exception>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 
+#include "io/boundary_value/boundary_value_fields.hpp"
 #include "io/boundary_value/boundary_value_history.hpp"
 #include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
@@ -105,6 +107,15 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
             write_boundary_value_row(history, row);
             out.row_seconds += since(t1);
         }
+        // Field output only when the scene asks for it: no field code runs otherwise.
+        std::optional<FieldOutput> fields;
+        if (scene.output.fields.enabled()) {
+            fields.emplace(scene, dir);
+            out.field_collections = fields->collections();
+            out.field_materials = fields->material_names();
+            fields->due(0, 0.0, false);
+            fields->write(*solver, 0, 0.0);
+        }
         long steps_before = 0;
         long increment = 0;
         bool warned = false;
@@ -123,11 +134,16 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
                 probe.measure(*solver, row);
                 write_boundary_value_row(history, row);
                 out.iterations.push_back(row.newton_iterations);
+
                 line.update(static_cast<double>(steps_before) + info.t_end * stage.steps,
                             info.stage,
                             fmt::format("increment {}  Newton {}  residual {:.1e}", increment,
                                         row.newton_iterations, row.residual));
                 out.row_seconds += since(t1);
+                const bool stage_end = info.t_end >= 1.0 - 1.0e-12;
+                if (fields && fields->due(increment, row.time, stage_end)) {
+                    fields->write(*solver, increment, row.time); // timed by FieldOutput
+                }
             };
             // A long increment (many Newton iterations, cuts) still moves the line.
             const auto on_iteration = [&](const fem::IncrementInfo& info) {
@@ -145,6 +161,10 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
                 out.reason = r.reason;
             }
             steps_before += stage.steps;
+        }
+        if (fields) {
+            out.field_outputs = fields->outputs();
+            out.field_seconds = fields->seconds();
         }
     } catch (const std::exception& e) {
         // An invalid set-up or a writer error in the middle of the run: keep the rows so far.
@@ -263,6 +283,19 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     d["steps"] = scene.total_steps();
     d["rows"] = run.rows;
     d["outputs"] = {HistoryWriter::file_name};
+    if (scene.output.fields.enabled()) {
+        const FieldSchedule& f = scene.output.fields;
+        for (const std::string& c : run.field_collections) {
+            d["outputs"].push_back(c);
+        }
+        d["fields"] = {{"every", f.every},
+                       {"stages", f.stages},
+                       {"times", f.times},
+                       {"outputs", run.field_outputs},
+                       {"collections", run.field_collections},
+                       {"materials", run.field_materials},
+                       {"seconds", run.field_seconds}};
+    }
     if (!scene.description.empty()) {
         d["description"] = scene.description;
     }
@@ -279,7 +312,7 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
                       {"gravity", t.gravity},
                       {"k0", t.k0},
                       {"pressure", t.pressure},
-                      {"output", run.row_seconds + run.finish_seconds}};
+                      {"output", run.row_seconds + run.finish_seconds + run.field_seconds}};
 }
 
 } // namespace ifsim::io

@@ -29,6 +29,11 @@ struct BoundaryValueRunOutcome {
     std::vector<int> iterations; // Newton iterations of each converged increment
     int nodes = 0, elements = 0;
     fem::InitialImbalance imbalance; // of the initial state under the first stage
+    // Field output ([output] fields): files written and the time it took (inside the stages).
+    std::size_t field_outputs = 0;
+    double field_seconds = 0.0;
+    std::vector<std::string> field_collections; // .pvd files relative to DIR
+    std::vector<std::string> field_materials;   // names of the cell array `material`
 };
 
 // Writes DIR/history.csv. Throws std::runtime_error only when history.csv cannot be written

@@ -1,6 +1,8 @@
 #include "io/boundary_value/boundary_value_scene.hpp"
 
+#include <cmath>
 #include <fmt/format.h>
+#include <optional>
 
 #include "io/boundary_value/boundary_value_region.hpp"
 #include "io/boundary_value/boundary_value_stage.hpp"
@@ -87,10 +89,48 @@ std::size_t main_contact(const TableReader& t,
            fmt::format("expected the name of a contact pair: {}; got \"{}\"", list, name));
 }
 
+// [output] fields: true (the end of every stage), or a table { every = N, stages = true|false,
+// times = [t, ...] } whose stages default to true.
+FieldSchedule read_fields(const TableReader& t) {
+    FieldSchedule f;
+    if (!t.has("fields")) {
+        return f;
+    }
+    const toml::node* node = t.find("fields");
+    if (node->is_boolean()) {
+        f.stages = t.boolean_or("fields", false);
+        return f;
+    }
+    if (!node->is_table()) {
+        t.fail("fields", "expected true, false or a table { every = N, stages = true, times = "
+                         "[t1, t2] }");
+    }
+    const TableReader ft = t.table("fields");
+    ft.allow_only({"every", "stages", "times"});
+    f.every = static_cast<long>(ft.integer_or("every", 0, 0, 1'000'000'000));
+    f.stages = ft.boolean_or("stages", true);
+    if (ft.has("times")) {
+        const toml::array* times = ft.find("times")->as_array();
+        if (times == nullptr) {
+            ft.fail("times", "expected a list of times (the history's time column), e.g. "
+                             "[1.5, 2.0]");
+        }
+        for (const toml::node& v : *times) {
+            const std::optional<double> x = v.value<double>();
+            if (!x || !std::isfinite(*x) || *x < 0.0) {
+                ft.fail("times", "expected finite times >= 0 (the history's time column)");
+            }
+            f.times.push_back(*x);
+        }
+    }
+    return f;
+}
+
 BoundaryValueOutput read_output(const TableReader& t, const fem::Mesh& mesh,
                                 const std::vector<BoundaryValueInterface>& contacts) {
-    t.allow_only({"plate", "soil_top", "traction_faces", "contact"});
+    t.allow_only({"plate", "soil_top", "traction_faces", "contact", "fields"});
     BoundaryValueOutput out;
+    out.fields = read_fields(t);
     out.plate = node_set(t, "plate", mesh);
     out.soil_top = node_set(t, "soil_top", mesh);
     out.contact = main_contact(t, contacts);

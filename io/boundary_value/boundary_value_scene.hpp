@@ -18,6 +18,7 @@
 #include "io/boundary_value/boundary_value_contacts.hpp"
 #include "io/boundary_value/boundary_value_material.hpp"
 #include "io/boundary_value/boundary_value_mesh.hpp"
+#include "io/boundary_value/field_schedule.hpp"
 
 namespace ifsim::io {
 
@@ -27,6 +28,7 @@ struct BoundaryValueOutput {
     std::string soil_top;       // node set: the soil's top
     std::string traction_faces; // face set, runs without contact pairs only
     std::size_t contact = 0;    // [output] contact: index of the pair of the main columns
+    FieldSchedule fields;       // [output] fields: VTU/PVD field output (off by default)
 };
 
 struct BoundaryValueScene {

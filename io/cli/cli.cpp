@@ -71,6 +71,13 @@ int run_cli(int argc, const char* const* argv) {
         ->allow_extra_args(false);
     run_cmd->add_option("--threads", run.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 4096));
+    run_cmd->add_flag("--fields", run.fields,
+                      "Boundary-value scenes: write VTU fields at the end of every stage "
+                      "(with the scene's [output] fields)");
+    run_cmd
+        ->add_option("--fields-every", run.fields_every,
+                     "Boundary-value scenes: write VTU fields every N increments")
+        ->check(CLI::Range(1L, 1'000'000'000L));
     run_cmd->add_flag("--scalar", run.scalar,
                       "Use the scalar kernel path instead of SIMD (same results to round-off)");
     auto* progress_flag = run_cmd->add_flag(

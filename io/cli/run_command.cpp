@@ -109,7 +109,11 @@ void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double p
               RunSummary& summary, std::string& label, long& steps) {
     const ProgressMode progress = opt.quiet ? ProgressMode::never : opt.progress;
     if (scene.kind == "boundary-value") {
-        const BoundaryValueScene& s = scene.boundary_value;
+        BoundaryValueScene& s = scene.boundary_value;
+        s.output.fields.stages = s.output.fields.stages || opt.fields;
+        if (opt.fields_every > 0) {
+            s.output.fields.every = opt.fields_every;
+        }
         const BoundaryValueRunOutcome run = run_boundary_value_scene(s, dir, progress, !opt.scalar);
         add_boundary_value_results(summary, s, run, parse_s);
         label = fmt::format("{}D FE", s.mesh_spec.dimension);
@@ -200,6 +204,17 @@ int run_command(const RunOptions& opt) {
         return write_summary_or_report(dir, summary, exit_code::bad_input);
     }
     const double parse_s = since(t_start);
+    if ((opt.fields || opt.fields_every > 0) && scene.kind != "boundary-value") {
+        const std::string message =
+            fmt::format("--fields and --fields-every apply to boundary-value scenes only; {} is "
+                        "a scene of kind \"{}\"",
+                        opt.scene, scene.kind);
+        fmt::print(stderr, "ifsim: error: {}\n", message);
+        summary.ok = false;
+        summary.reason = message;
+        summary.wall_s = since(t_start);
+        return write_summary_or_report(dir, summary, exit_code::bad_input);
+    }
 
     std::string label;
     long steps = 0;
