@@ -63,6 +63,7 @@ ContactSetCounters ContactSet::counters() const {
         s.failed_evaluations += k.failed_evaluations;
         s.relaxed_reruns += k.relaxed_reruns;
         s.relaxed_point_updates += k.relaxed_point_updates;
+        s.band_clamped += k.band_clamped;
     }
     return s;
 }

@@ -71,6 +71,7 @@ struct SolverCounters {
     double worst_gather_change = 0.0; // largest target change left in an accepted increment
     long contact_relaxed_reruns = 0;  // see ContactPairCounters
     double contact_relaxed_point_updates = 0.0;
+    long contact_band_clamped = 0; // point evaluations on a clamped band (clamp_band = true)
     LinearSolverCounters linear;
 };
 

@@ -53,6 +53,7 @@ const SolverCounters& StaticSolver::counters() const {
     counters_.contact_failures = c.failed_evaluations;
     counters_.contact_relaxed_reruns = c.relaxed_reruns;
     counters_.contact_relaxed_point_updates = c.relaxed_point_updates;
+    counters_.contact_band_clamped = c.band_clamped;
     return counters_;
 }
 

@@ -11,7 +11,7 @@ failed=()
 for scene in scenes/*.toml; do
     name=$(basename "$scene" .toml)
     echo "== $name"
-    if ! ./build/ifsim run "$scene" --out "$out/$name"; then
+    if ! ./build/ifsim run "$scene" --out "$out/$name" --replace; then
         failed+=("$name")
     fi
 done

@@ -71,6 +71,9 @@ int run_cli(int argc, const char* const* argv) {
         ->allow_extra_args(false);
     run_cmd->add_option("--threads", run.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 4096));
+    run_cmd->add_flag("--replace", run.replace,
+                      "Remove an earlier run's outputs in DIR (default: move them to "
+                      "DIR/previous-<UTC time>/)");
     run_cmd->add_flag("--fields", run.fields,
                       "Boundary-value scenes: write VTU fields at the end of every stage "
                       "(with the scene's [output] fields)");

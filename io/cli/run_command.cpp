@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 
 #include <fmt/format.h>
@@ -17,6 +18,7 @@
 #include "io/interface_test/interface_test_scene.hpp"
 #include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
+#include "io/output/run_folder.hpp"
 #include "io/output/summary_writer.hpp"
 #include "io/scene/interface_formulation_reader.hpp"
 #include "io/scene/scene_error.hpp"
@@ -30,13 +32,30 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Results of an earlier run in DIR must not survive as if they belonged to this one.
-void remove_stale_outputs(const fs::path& dir) {
-    for (const char* name : {summary_file_name, summary_temp_name, HistoryWriter::file_name,
-                             HistoryWriter::partial_name}) {
-        std::error_code ec;
-        fs::remove(dir / name, ec);
+// DIR/scene.toml: the scene as run (overrides applied, a mesh file by its absolute path), so
+// the folder says how to reproduce it.
+void write_scene_copy(const fs::path& dir, toml::table table, const RunOptions& opt,
+                      const std::string& mesh_path) {
+    if (!mesh_path.empty()) {
+        if (toml::table* mesh = table["mesh"].as_table()) {
+            mesh->insert_or_assign("file", mesh_path);
+        }
     }
+    std::string header = fmt::format("# The scene as ifsim {} ({}) ran it: {}\n", build_version(),
+                                     build_revision(), opt.scene);
+    for (const std::string& set : opt.sets) {
+        header += fmt::format("#   --set {}\n", set);
+    }
+    header += "# (overrides applied below; rerun: ifsim run scene.toml --out DIR)\n\n";
+    const fs::path tmp = dir / "scene.toml.partial";
+    {
+        std::ofstream out(tmp, std::ios::trunc);
+        out << header << table << "\n";
+        if (!out) {
+            throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
+        }
+    }
+    fs::rename(tmp, dir / "scene.toml");
 }
 
 // The --set assignment an error key comes from, if any (the key itself or a key below it).
@@ -68,6 +87,13 @@ void add_element_test_results(RunSummary& summary, const ElementTestScene& scene
     summary.ok = r.ok;
     summary.reason = r.reason;
     summary.counters = element_counters(r.counters);
+    if (r.counters.unreliable_updates > 0) {
+        summary.warnings.push_back(
+            {"unreliable_updates", static_cast<double>(r.counters.unreliable_updates),
+             fmt::format("{} material update(s) ended on a safeguard (tension cut-off or the "
+                         "substep floor): the stress path there is not the model's own",
+                         r.counters.unreliable_updates)});
+    }
     summary.details["model"] = scene.material.model;
     summary.details["parameters"] = scene.material.parameters;
     summary.details["roughness"] = scene.material.roughness;
@@ -114,6 +140,10 @@ void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double p
         if (opt.fields_every > 0) {
             s.output.fields.every = opt.fields_every;
         }
+        if (!opt.quiet) {
+            fmt::print(stderr, "ifsim: {}: {}\n", opt.scene,
+                       describe_effects(boundary_value_effects(s)));
+        }
         const BoundaryValueRunOutcome run = run_boundary_value_scene(s, dir, progress, !opt.scalar);
         add_boundary_value_results(summary, s, run, parse_s);
         label = fmt::format("{}D FE", s.mesh_spec.dimension);
@@ -150,28 +180,36 @@ int run_command(const RunOptions& opt) {
     const auto t_start = Clock::now();
     const ThreadLimit threads(opt.threads);
     const fs::path dir(opt.out);
-    {
-        std::error_code ec;
-        fs::create_directories(dir, ec);
-        if (ec || !fs::is_directory(dir)) {
-            fmt::print(stderr, "ifsim: error: cannot create the output directory {}: {}\n", opt.out,
-                       ec ? ec.message() : "a file of that name exists");
-            return exit_code::io_error;
-        }
+    FolderPreparation earlier;
+    try {
+        earlier = prepare_run_folder(dir, opt.replace);
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "ifsim: error: {}\n", e.what());
+        return exit_code::io_error;
     }
-    remove_stale_outputs(dir);
+    if (!earlier.moved.empty() && !opt.quiet) {
+        fmt::print(stderr, "ifsim: {}\n", earlier.message(dir));
+    }
 
     RunSummary summary;
     summary.scene = opt.scene;
     summary.threads = threads.threads();
     summary.details["overrides"] = opt.sets;
+    if (!earlier.moved.empty()) {
+        summary.details["earlier_run"] = {
+            {"files", earlier.moved},
+            {"moved_to", earlier.removed ? nlohmann::ordered_json(nullptr)
+                                         : nlohmann::ordered_json(earlier.moved_to.string())}};
+    }
     summary.details["path"] = opt.scalar ? "scalar" : "simd";
     summary.details["lanes"] = opt.scalar ? std::size_t{1} : simd::lanes;
 
     // Parse: the scene, the overrides, the kind's schema.
     Scene scene;
+    toml::table table;
+    std::string mesh_path; // a boundary-value scene's mesh file, resolved
     try {
-        toml::table table = load_scene_table(opt.scene);
+        table = load_scene_table(opt.scene);
         for (const auto& set : opt.sets) {
             apply_override(table, set, opt.scene);
         }
@@ -183,6 +221,9 @@ int run_command(const RunOptions& opt) {
             scene.interface = read_interface_test_scene(table, opt.scene);
         } else if (scene.kind == "boundary-value") {
             scene.boundary_value = read_boundary_value_scene(table, opt.scene);
+            if (!scene.boundary_value.mesh_spec.file.empty()) {
+                mesh_path = fs::absolute(scene.boundary_value.mesh_spec.path).string();
+            }
         } else {
             throw SceneError(opt.scene, "kind",
                              fmt::format("kind \"{}\" is not supported by this build; expected "
@@ -204,6 +245,13 @@ int run_command(const RunOptions& opt) {
         return write_summary_or_report(dir, summary, exit_code::bad_input);
     }
     const double parse_s = since(t_start);
+    try {
+        write_scene_copy(dir, table, opt, mesh_path);
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "ifsim: error: {}\n", e.what());
+        return exit_code::io_error;
+    }
+    summary.details["scene_copy"] = "scene.toml";
     if ((opt.fields || opt.fields_every > 0) && scene.kind != "boundary-value") {
         const std::string message =
             fmt::format("--fields and --fields-every apply to boundary-value scenes only; {} is "
@@ -235,8 +283,13 @@ int run_command(const RunOptions& opt) {
         return write_summary_or_report(dir, summary, exit_code::run_failed);
     }
     const int code = write_summary_or_report(dir, summary, exit_code::ok);
+    // A degraded result is printed even with --quiet: a reader must not miss it.
+    for (const RunWarning& w : summary.warnings) {
+        fmt::print(stderr, "ifsim: WARNING: degraded result: {}\n", w.message);
+    }
     if (code == exit_code::ok && !opt.quiet) {
-        fmt::print("ifsim: {} ({}) ok: {} steps in {:.3f} s, results in {}\n", opt.scene, label,
+        fmt::print("ifsim: {} ({}) ok{}: {} steps in {:.3f} s, results in {}\n", opt.scene, label,
+                   summary.warnings.empty() ? "" : ", DEGRADED (warnings above, summary.json)",
                    steps, summary.wall_s, opt.out);
     }
     return code;

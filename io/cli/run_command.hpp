@@ -18,6 +18,7 @@ struct RunOptions {
     bool scalar = false;           // the scalar kernel path instead of SIMD
     ProgressMode progress = ProgressMode::automatic;
     bool quiet = false;
+    bool replace = false;  // remove an earlier run's outputs in DIR instead of moving them aside
     bool fields = false;   // boundary-value: fields at the end of every stage
     long fields_every = 0; // boundary-value: fields every N increments
 };

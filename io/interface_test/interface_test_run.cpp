@@ -60,6 +60,16 @@ void add_interface_test_results(RunSummary& summary, const InterfaceTestScene& s
                         {"interface_evaluations", rounded(c.interface_evaluations)},
                         {"sample_evaluations", rounded(c.sample_evaluations)},
                         {"model_substeps", rounded(c.model_substeps)}};
+    if (c.band_clamped_steps > 0) {
+        summary.warnings.push_back(
+            {"band_clamped", static_cast<double>(c.band_clamped_steps),
+             fmt::format("{} of {} steps ran on a clamped shear band (d_s held at "
+                         "min_band_fraction x d_s0 = {:.3g} m): those rows rest on an assumed "
+                         "band thickness, not Eq. 26",
+                         c.band_clamped_steps, run.rows > 0 ? run.rows - 1 : 0,
+                         scene.spec.contact.interface.min_band_fraction *
+                             scene.spec.contact.interface.shear_band_thickness)});
+    }
     auto& d = summary.details;
     const InterfaceTestSpec& spec = scene.spec;
     d["formulation"] = formulation_name(spec.contact.interface.formulation);

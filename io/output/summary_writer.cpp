@@ -29,6 +29,12 @@ nlohmann::ordered_json summary_json(const RunSummary& s) {
     if (!s.ok) {
         j["reason"] = s.reason;
     }
+    j["quality"] = s.warnings.empty() ? "clean" : "degraded";
+    nlohmann::ordered_json warnings = nlohmann::ordered_json::array();
+    for (const RunWarning& w : s.warnings) {
+        warnings.push_back({{"code", w.code}, {"count", w.count}, {"message", w.message}});
+    }
+    j["warnings"] = warnings;
     j["threads"] = s.threads;
     j["revision"] = build_revision();
     j["version"] = build_version();

@@ -115,3 +115,37 @@ TEST(Fields, BadScheduleNamesTheKey) {
 
 } // namespace
 } // namespace ifsim::io
+
+namespace ifsim::io {
+namespace {
+
+// summary.json "effects" lists what the run built: the shear box has one novel hypoplastic
+// pair, hypoplastic sand with intergranular strain, no gravity, no K0, no fields; the
+// two-pair scene lists both pairs; --fields shows up as fields: true.
+TEST(Effects, SummaryListsWhatTheRunBuilt) {
+    const fs::path dir = test::fresh_dir("effects-box");
+    ASSERT_EQ(run(dir, {}).code, 0);
+    const auto e = test::summary(dir)["effects"];
+    EXPECT_EQ(e["kinematics"], "small-strain");
+    EXPECT_EQ(e["dimension"], 2);
+    EXPECT_FALSE(e["gravity"].get<bool>());
+    EXPECT_FALSE(e["fields"].get<bool>());
+    ASSERT_EQ(e["contact_pairs"].size(), 1u);
+    EXPECT_EQ(e["contact_pairs"][0]["formulation"], "novel");
+    EXPECT_EQ(e["contact_pairs"][0]["model"], "hypoplasticity");
+    ASSERT_EQ(e["materials"].size(), 2u);
+    EXPECT_EQ(e["materials"][0]["model"], "hypoplasticity");
+    EXPECT_TRUE(e["materials"][0]["intergranular_strain"].get<bool>());
+    EXPECT_FALSE(e["materials"][0]["k0"].get<bool>());
+    const fs::path two = test::fresh_dir("effects-two");
+    const auto r = test::run_cli_captured(
+        {"run", "scenes/fe-rough-and-smooth-2d.toml", "--out", two.string(), "--fields"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto e2 = test::summary(two)["effects"];
+    EXPECT_EQ(e2["contact_pairs"].size(), 2u);
+    EXPECT_TRUE(e2["fields"].get<bool>());
+    EXPECT_NE(r.err.find("fields: yes"), std::string::npos) << r.err;
+}
+
+} // namespace
+} // namespace ifsim::io

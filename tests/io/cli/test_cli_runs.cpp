@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -113,7 +114,8 @@ TEST(CliRun, ScalarAndSimdPathsAgreeToRoundOff) {
 
 TEST(CliRun, BadSceneNamesFileAndKeyAndWritesAFailedSummary) {
     const fs::path out = test::fresh_dir("cli-bad");
-    // A complete old result in DIR must not survive as if it belonged to this run.
+    // A complete old result in DIR must not survive as if it belonged to this run (it is moved
+    // aside: CliRun.EarlierRunIsMovedAsideOrReplacedNeverMixedIn).
     std::ofstream(out / "summary.json") << R"({"status": "ok"})";
     std::ofstream(out / "history.csv") << "old\n";
     std::string text = test::valid_scene();
@@ -127,6 +129,67 @@ TEST(CliRun, BadSceneNamesFileAndKeyAndWritesAFailedSummary) {
     EXPECT_EQ(j["status"], "failed");
     EXPECT_NE(j["reason"].get<std::string>().find("initial.void_ratio"), std::string::npos);
     EXPECT_FALSE(fs::exists(out / "history.csv"));
+}
+
+// An earlier run in DIR is moved aside whole (never destroyed, never left to pass for the new
+// run's), the user's own files stay; --replace removes it instead.
+TEST(CliRun, EarlierRunIsMovedAsideOrReplacedNeverMixedIn) {
+    const fs::path out = test::fresh_dir("cli-earlier");
+    const std::string scene = test::write_scene(test::valid_scene());
+    ASSERT_EQ(run_captured({"run", scene, "--out", out.string()}).code, exit_code::ok);
+    const std::string first_history = test::read_text(out / "history.csv");
+    std::ofstream(out / "overview.png") << "plot of the first run";
+    std::ofstream(out / "notes.txt") << "the user's own file";
+    fs::create_directories(out / "fields");
+    // A typo: the new run fails at parse time, the first run's results survive, moved aside.
+    std::string bad = test::valid_scene();
+    bad.replace(bad.find("void_ratio = 0.7"), 16, "void_ratio = -1");
+    const Captured r = run_captured({"run", test::write_scene(bad), "--out", out.string()});
+    EXPECT_EQ(r.code, exit_code::bad_input);
+    EXPECT_NE(r.err.find("moved to"), std::string::npos) << r.err;
+    std::vector<fs::path> previous;
+    for (const auto& e : fs::directory_iterator(out)) {
+        if (e.path().filename().string().starts_with("previous-")) {
+            previous.push_back(e.path());
+        }
+    }
+    ASSERT_EQ(previous.size(), 1u);
+    EXPECT_EQ(test::read_text(previous[0] / "history.csv"), first_history);
+    EXPECT_TRUE(fs::exists(previous[0] / "overview.png"));
+    EXPECT_TRUE(fs::exists(previous[0] / "fields"));
+    EXPECT_TRUE(fs::exists(previous[0] / "scene.toml"));
+    EXPECT_FALSE(fs::exists(out / "overview.png"));
+    EXPECT_FALSE(fs::exists(out / "history.csv"));
+    EXPECT_TRUE(fs::exists(out / "notes.txt"));
+    EXPECT_EQ(summary(out)["status"], "failed");
+    // --replace: the failed attempt's summary is removed, nothing moved.
+    ASSERT_EQ(run_captured({"run", scene, "--out", out.string(), "--replace"}).code, exit_code::ok);
+    int dirs = 0;
+    for (const auto& e : fs::directory_iterator(out)) {
+        dirs += e.path().filename().string().starts_with("previous-") ? 1 : 0;
+    }
+    EXPECT_EQ(dirs, 1);
+    EXPECT_EQ(test::read_text(out / "history.csv"), first_history);
+}
+
+// DIR/scene.toml is the scene as run, overrides applied: running it again gives the same
+// history byte for byte.
+TEST(CliRun, SceneCopyReproducesTheRun) {
+    const fs::path out = test::fresh_dir("cli-copy");
+    const std::string scene = test::write_scene(test::valid_scene());
+    ASSERT_EQ(run_captured(
+                  {"run", scene, "--out", (out / "a").string(), "--set", "initial.void_ratio=0.75"})
+                  .code,
+              exit_code::ok);
+    const std::string copy = test::read_text(out / "a" / "scene.toml");
+    EXPECT_NE(copy.find("--set initial.void_ratio=0.75"), std::string::npos) << copy;
+    ASSERT_EQ(
+        run_captured({"run", (out / "a" / "scene.toml").string(), "--out", (out / "b").string()})
+            .code,
+        exit_code::ok);
+    EXPECT_EQ(test::read_text(out / "a" / "history.csv"),
+              test::read_text(out / "b" / "history.csv"));
+    EXPECT_EQ(summary(out / "a")["scene_copy"], "scene.toml");
 }
 
 TEST(CliRun, BadOverrideIsReportedWithTheAssignment) {

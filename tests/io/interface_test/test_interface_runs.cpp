@@ -242,6 +242,31 @@ TEST(InterfaceRun, SummaryHasInterfaceCountersAndPhases) {
     EXPECT_GT(j["timing"]["phases"]["interface"].get<double>(), 0.0);
 }
 
+// A run on a clamped shear band is "ok" but "degraded": summary.json says so with the count,
+// stderr carries a warning even with --quiet; the same run without clamping is "clean".
+TEST(InterfaceRun, ClampedBandMakesTheRunDegradedAndSaysSo) {
+    const std::string file = test::write_scene(scene(adaptive_novel));
+    const fs::path clean = test::fresh_dir("iface-clean");
+    ASSERT_EQ(run_captured({"run", file, "--out", clean.string(), "--quiet"}).code, exit_code::ok);
+    EXPECT_EQ(summary(clean)["quality"], "clean");
+    EXPECT_TRUE(summary(clean)["warnings"].empty());
+    const fs::path out = test::fresh_dir("iface-clamped");
+    // Clamped as soon as the band compacts by 1e-4 of its thickness.
+    const Captured r = run_captured({"run", file, "--out", out.string(), "--quiet", "--set",
+                                     "integration.band_collapse=\"clamp\"", "--set",
+                                     "integration.min_band_fraction=0.9999"});
+    ASSERT_EQ(r.code, exit_code::ok) << r.err;
+    const auto j = summary(out);
+    EXPECT_EQ(j["status"], "ok");
+    EXPECT_EQ(j["quality"], "degraded");
+    ASSERT_EQ(j["warnings"].size(), 1u);
+    EXPECT_EQ(j["warnings"][0]["code"], "band_clamped");
+    EXPECT_EQ(j["warnings"][0]["count"].get<double>(),
+              j["counters"]["band_clamped_steps"].get<double>());
+    EXPECT_GT(j["warnings"][0]["count"].get<double>(), 0.0);
+    EXPECT_NE(r.err.find("WARNING: degraded result"), std::string::npos) << r.err;
+}
+
 TEST(InterfaceRun, ScalarAndSimdPathsAgreeToRoundOff) {
     const std::string file = test::write_scene(scene(adaptive_novel));
     const fs::path a = test::fresh_dir("iface-simd");
