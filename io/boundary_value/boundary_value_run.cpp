@@ -12,6 +12,7 @@
 
 #include "io/boundary_value/boundary_value_fields.hpp"
 #include "io/boundary_value/boundary_value_history.hpp"
+#include "io/output/column_units.hpp"
 #include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
 
@@ -364,6 +365,7 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     d["stages"] = scene.stages.size();
     d["steps"] = scene.total_steps();
     d["rows"] = run.rows;
+    d["columns"] = describe_columns("boundary-value", boundary_value_history_columns(scene));
     d["outputs"] = {HistoryWriter::file_name};
     if (scene.output.fields.enabled()) {
         const FieldSchedule& f = scene.output.fields;

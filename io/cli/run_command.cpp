@@ -12,10 +12,12 @@
 #include "io/boundary_value/boundary_value_scene.hpp"
 #include "io/cli/exit_codes.hpp"
 #include "io/cli/thread_limit.hpp"
+#include "io/element_test/element_history.hpp"
 #include "io/element_test/element_test_run.hpp"
 #include "io/element_test/element_test_scene.hpp"
 #include "io/interface_test/interface_test_run.hpp"
 #include "io/interface_test/interface_test_scene.hpp"
+#include "io/output/column_units.hpp"
 #include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
 #include "io/output/run_folder.hpp"
@@ -101,6 +103,8 @@ void add_element_test_results(RunSummary& summary, const ElementTestScene& scene
     summary.details["steps"] = scene.total_steps();
     summary.details["rows"] = run.rows;
     summary.details["outputs"] = {HistoryWriter::file_name};
+    summary.details["columns"] =
+        describe_columns("element-test", element_history_columns(scene.material.choice));
     if (!scene.description.empty()) {
         summary.details["description"] = scene.description;
     }

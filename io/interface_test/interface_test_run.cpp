@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "io/interface_test/interface_history.hpp"
+#include "io/output/column_units.hpp"
 #include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
 #include "io/scene/interface_formulation_reader.hpp"
@@ -71,6 +72,7 @@ void add_interface_test_results(RunSummary& summary, const InterfaceTestScene& s
                              scene.spec.contact.interface.shear_band_thickness)});
     }
     auto& d = summary.details;
+    d["columns"] = describe_columns("interface-test", interface_history_columns());
     const InterfaceTestSpec& spec = scene.spec;
     d["formulation"] = formulation_name(spec.contact.interface.formulation);
     if (scene.coulomb()) {
