@@ -84,6 +84,8 @@ void add_interface_test_results(RunSummary& summary, const InterfaceTestScene& s
         d["parameters"] = scene.interface_material.parameters;
         d["roughness"] = scene.interface_material.roughness;
         d["shear_band_thickness"] = s.shear_band_thickness;
+        d["band_collapse"] = s.clamp_band ? "clamp" : "fail";
+        d["min_band_fraction"] = s.min_band_fraction;
         if (spec.contact.interface.formulation == InterfaceFormulation::stutz) {
             d["stutz_initial_stress"] = scene.stutz_initial_stress;
         }
