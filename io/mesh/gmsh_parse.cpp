@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "io/mesh/gmsh_binary.hpp"
 #include "io/mesh/gmsh_error.hpp"
 #include "io/mesh/gmsh_msh22.hpp"
 #include "io/mesh/gmsh_msh41.hpp"
@@ -32,8 +33,7 @@ std::string read_mesh_format(GmshCursor& c) {
                            version));
     }
     if (c.integer("the file type (0 = ASCII)", 0, 1) != 0) {
-        c.fail("expected an ASCII mesh file (file type 0), found a binary one (file type 1); "
-               "save the mesh without the binary option");
+        c.fail("expected the ASCII form here (binary files are transcoded before parsing)");
     }
     c.integer("the data size", 1, 16);
     c.expect_end();
@@ -124,7 +124,24 @@ GmshContent parse_gmsh_file(const std::string& path) {
     if (in.bad()) {
         throw MeshFileError(path, 0, "cannot read the mesh file");
     }
-    return parse_gmsh_text(std::move(text).str(), path);
+    std::string bytes = std::move(text).str();
+    if (!is_binary_gmsh(bytes)) {
+        return parse_gmsh_text(std::move(bytes), path);
+    }
+    // Binary: the same checks on its ASCII form; a line number there is not one of the file.
+    std::string ascii = gmsh_binary_to_ascii(bytes, path);
+    try {
+        return parse_gmsh_text(std::move(ascii), path);
+    } catch (const MeshFileError& e) {
+        std::string message = e.what();
+        const std::string prefix =
+            e.line() > 0 ? fmt::format("{}:{}: ", path, e.line()) : path + ": ";
+        if (message.starts_with(prefix)) {
+            message.erase(0, prefix.size());
+        }
+        throw MeshFileError(path, e.line(),
+                            message + " (binary file: the line is that of its ASCII form)");
+    }
 }
 
 } // namespace ifsim::io

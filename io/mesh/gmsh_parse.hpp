@@ -1,8 +1,9 @@
 #pragma once
-// Parsing a Gmsh ASCII mesh file, MSH 4.1 or 2.2, into GmshContent: $MeshFormat first, then
+// Parsing a Gmsh mesh file, MSH 4.1 or 2.2 (ASCII, or binary through its ASCII form,
+// gmsh_binary.hpp), into GmshContent: $MeshFormat first, then
 // $PhysicalNames, $Entities (4.1), $Nodes and $Elements; other sections ($Comments,
 // $NodeData, $Periodic, ...) are skipped. Throws MeshFileError naming the file and the line
-// (missing or unreadable file, binary file, another version, truncated section, bad number,
+// (missing or unreadable file, another version, truncated section, bad number,
 // unknown element type).
 
 #include <string>

@@ -364,7 +364,8 @@ TEST(GmshReader, BoundaryElementWithoutParentIsAnError) {
 }
 
 TEST(GmshReader, OtherBadFilesAreErrors) {
-    expect_mesh_error(replaced(two_quads_41, "4.1 0 8", "4.1 1 8"), 2, "binary");
+    expect_mesh_error(replaced(two_quads_41, "4.1 0 8", "4.1 1 8"), 0,
+                      "says file type 1 (binary) but holds text");
     expect_mesh_error(replaced(two_quads_41, "4.1 0 8", "4 0 8"), 2, "version 4.1 or 2.2");
     expect_mesh_error("", 1, "starting with '$MeshFormat'");
     // 2D meshes lie in z = 0.
@@ -383,6 +384,57 @@ TEST(GmshReader, OtherBadFilesAreErrors) {
     // A bad number.
     const std::string word = replaced(two_quads_41, "0 1 0\n1 1 0", "0 one 0\n1 1 0");
     expect_mesh_error(word, line_of(word, "0 one 0"), "found 'one'");
+}
+
+} // namespace
+} // namespace ifsim::io
+
+namespace ifsim::io {
+namespace {
+
+// Binary MSH files (Gmsh's -bin; tests/io/mesh/data made by Debian 12's gmsh 4.8.4 from
+// scenes/meshes/*.geo with -clscale 3 (2D) and 2 (3D), each in ASCII and binary from the same
+// meshing): the binary file gives the ASCII file's mesh — the same sets and connectivity, the
+// coordinates to the last digits Gmsh prints in ASCII — in 4.1 and 2.2, 2D and 3D.
+void expect_same_mesh(const fem::Mesh& a, const fem::Mesh& b) {
+    ASSERT_EQ(a.type, b.type);
+    ASSERT_EQ(a.coordinates.size(), b.coordinates.size());
+    for (std::size_t i = 0; i < a.coordinates.size(); ++i) {
+        EXPECT_NEAR(a.coordinates[i], b.coordinates[i], 1e-15 * (1.0 + std::abs(a.coordinates[i])));
+    }
+    EXPECT_EQ(a.connectivity, b.connectivity);
+    EXPECT_EQ(a.node_sets, b.node_sets);
+    EXPECT_EQ(a.face_sets, b.face_sets);
+    EXPECT_EQ(a.element_sets, b.element_sets);
+}
+
+TEST(GmshReader, BinaryFilesGiveTheAsciiMesh) {
+    const std::string dir = "tests/io/mesh/data/";
+    const GmshMesh ascii2 = read_gmsh_mesh(dir + "box2d-ascii-41.msh");
+    EXPECT_GT(ascii2.mesh.n_elements(), 10);
+    for (const char* f : {"box2d-binary-41.msh", "box2d-binary-22.msh"}) {
+        const GmshMesh bin = read_gmsh_mesh(dir + f);
+        SCOPED_TRACE(f);
+        expect_same_mesh(bin.mesh, ascii2.mesh);
+    }
+    const GmshMesh ascii3 = read_gmsh_mesh(dir + "box3d-ascii-41.msh");
+    const GmshMesh bin3 = read_gmsh_mesh(dir + "box3d-binary-41.msh");
+    EXPECT_EQ(bin3.mesh.type, fem::ElementType::hex8);
+    expect_same_mesh(bin3.mesh, ascii3.mesh);
+}
+
+TEST(GmshReader, DamagedBinaryFilesAreErrorsNamingTheFile) {
+    std::ifstream in("tests/io/mesh/data/box2d-binary-41.msh", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_GT(bytes.size(), 1000u);
+    // Cut in the middle of the node coordinates.
+    const std::string cut = bytes.substr(0, bytes.find("$EndNodes") - 100);
+    expect_mesh_error(cut, 0, "binary mesh file: truncated");
+    // A foreign byte order (the marker int 1 written big-endian).
+    std::string swapped = bytes;
+    const auto at = swapped.find("4.1 1 8\n") + 8;
+    swapped.replace(at, 4, std::string("\0\0\0\1", 4));
+    expect_mesh_error(swapped, 0, "byte order");
 }
 
 } // namespace
