@@ -79,12 +79,25 @@ def read_summary(run_dir):
 # Titles: what ran, and whether the result can be trusted as stated
 
 
+def warnings_of(summary):
+    """summary.json warnings; a summary written before `quality` existed (an older results/)
+    still tells of a clamped band by its counter."""
+    if "quality" in summary:
+        return summary.get("warnings") or []
+    clamped = (summary.get("counters") or {}).get("band_clamped_steps", 0)
+    return [{"code": "band_clamped", "count": clamped}] if clamped else []
+
+
+def is_degraded(summary):
+    return summary.get("quality") == "degraded" or bool(warnings_of(summary))
+
+
 def degraded_note(summary):
     """'DEGRADED: code (count), ...' for a degraded run, else ''."""
-    if summary.get("quality") != "degraded":
+    if not is_degraded(summary):
         return ""
     codes = []
-    for w in summary.get("warnings") or []:
+    for w in warnings_of(summary):
         count = w.get("count")
         codes.append(f"{w.get('code', '?')} ({count:g})" if count is not None
                      else str(w.get("code", "?")))
@@ -109,7 +122,7 @@ def run_title(run_dir, summary, details=()):
 
 def set_title(fig, text, summary):
     # Red, so that a degraded or failed run is not taken for a clean one at a glance.
-    bad = summary.get("quality") == "degraded" or summary.get("status") == "failed"
+    bad = is_degraded(summary) or summary.get("status") == "failed"
     fig.suptitle(text, color=BAD_TITLE if bad else "black",
                  fontweight="bold" if bad else "normal")
 
@@ -137,7 +150,7 @@ def stage_colours(plt, stage_column):
     if len(stages) == 1:
         return {stages[0]: cmap(0.3)}
     # Stop short of viridis' pale yellow end, which hardly shows on white.
-    return {s: cmap(0.9 * k / (len(stages) - 1)) for k, s in enumerate(stages)}
+    return {s: cmap(0.82 * k / (len(stages) - 1)) for k, s in enumerate(stages)}
 
 
 def by_stage(x, y, stage):
@@ -179,14 +192,22 @@ def style_axes(ax, xlabel, ylabel, title):
     ax.grid(True, alpha=0.3)
 
 
-interface_axes = style_axes  # the name the cycle and compare plots use
+def widen_flat_axis(axis):
+    """A quantity held constant (t_n under CNL) shows ±5 % around its value, not its
+    round-off noise in 15-digit tick labels."""
+    lo, hi = axis.get_ylim()
+    mid = 0.5 * (lo + hi)
+    if mid != 0.0 and hi - lo < 1e-6 * abs(mid):
+        axis.set_ylim(mid - 0.05 * abs(mid), mid + 0.05 * abs(mid))
 
 
 def draw_panels(axes, panels, stage, colours, clamped=None):
     """Draws every panel, each series coloured by stage, lettered (a), (b), ...; a panel with
-    several series tells their line styles apart in its own legend."""
+    several series tells their line styles apart in its own legend. Returns the line-style
+    handles of the first panel, whose legend stage_key redraws."""
     from matplotlib.lines import Line2D
     lw = 0.8 if len(colours) > LEGEND_STAGES else 1.2
+    first = []
     for k, (axis, p) in enumerate(zip(axes, panels)):
         for style, (y, _) in zip(LINE_STYLES, p["series"]):
             for s, xs, ys in by_stage(p["x"], y, stage):
@@ -194,17 +215,21 @@ def draw_panels(axes, panels, stage, colours, clamped=None):
             if clamped:
                 mark_clamped(axis, p["x"], y, clamped)
         style_axes(axis, p["xlabel"], p["ylabel"], f"({chr(ord('a') + k)}) {p['title']}")
+        widen_flat_axis(axis)
         if len(p["series"]) > 1:
-            axis.legend(handles=[Line2D([], [], color="k", lw=1.2, ls=style, label=label)
-                                 for style, (_, label) in zip(LINE_STYLES, p["series"])],
-                        fontsize=8)
+            handles = [Line2D([], [], color="k", lw=1.2, ls=style, label=label)
+                       for style, (_, label) in zip(LINE_STYLES, p["series"])]
+            axis.legend(handles=handles, fontsize=8)
+            first = handles if k == 0 else first
         if p["decorate"]:
             p["decorate"](axis)
+    return first
 
 
 def stage_key(fig, axes, colours, extra=()):
     """Which colour is which stage: a legend in the first panel for a few stages, a colour
-    bar beside the grid for many. `extra` are further legend handles (clamped band)."""
+    bar beside the grid for many. `extra` are further handles for that legend (the first
+    panel's line styles, the clamped band)."""
     import matplotlib as mpl
     from matplotlib.lines import Line2D
     handles = list(extra)
@@ -224,14 +249,25 @@ def stage_key(fig, axes, colours, extra=()):
         axes[0].legend(handles=handles, fontsize=8)
 
 
+def clamp_floor(h, summary):
+    """min_band_fraction x d_s0 of a run that may clamp its band (band_collapse = "clamp"),
+    else None."""
+    clamp = summary.get("band_collapse") == "clamp" or (
+        "band_collapse" not in summary and warnings_of(summary))  # an older summary
+    if not clamp or "band_thickness" not in h:
+        return None
+    # 0.05: the engine's default, for summaries that do not say (kernels/interface_settings.hpp)
+    return summary.get("min_band_fraction", 0.05) * summary.get("shear_band_thickness", 0.0)
+
+
 def clamped_steps(h, summary):
     """Per row i: True when step i (row i-1 to row i) ran on a clamped shear band. The engine
     clamps d_s for a step whose starting band_thickness = d_s0 (1 + eps_n) (Eq. 26, the
     column) is at or below min_band_fraction x d_s0; only interface tests with
     band_collapse = "clamp" can do so. None when no step was clamped."""
-    if summary.get("band_collapse") != "clamp" or "band_thickness" not in h:
+    floor = clamp_floor(h, summary)
+    if floor is None:
         return None
-    floor = summary.get("min_band_fraction", 0.0) * summary.get("shear_band_thickness", 0.0)
     below = [d <= floor * (1.0 + 1e-9) for d in h["band_thickness"]]
     flags = [False] + below[:-1]
     return flags if any(flags) else None
@@ -265,7 +301,7 @@ def clamped_handle():
 def check_clamped_count(run_dir, flags, summary):
     """Says so when the rows marked as clamped do not add up to the run's own count."""
     counted = sum(flags) if flags else 0
-    for w in summary.get("warnings") or []:
+    for w in warnings_of(summary):
         if w.get("code") == "band_clamped" and w.get("count") != counted:
             print(f"plot_results: {run_dir}: {counted} steps marked as on a clamped band, "
                   f"summary.json says {w.get('count'):g}", file=sys.stderr)
@@ -506,8 +542,8 @@ def plot_interface_cycles(plt, run_dir, h, summary, wanted=(1, 11)):
             sub = [j > 0 and flags[i] for j, i in enumerate(rows)]
             mark_clamped(ax[0], u, t, sub)
             mark_clamped(ax[1], u, un, sub)
-    interface_axes(ax[0], U_LABEL, "shear stress $t_{t1}$ [kPa]", "shear stress")
-    interface_axes(ax[1], U_LABEL, "normal displacement $u_n$ [mm] (dilation +)",
+    style_axes(ax[0], U_LABEL, "shear stress $t_{t1}$ [kPa]", "shear stress")
+    style_axes(ax[1], U_LABEL, "normal displacement $u_n$ [mm] (dilation +)",
                    "normal displacement")
     for a in ax:
         handles, _ = a.get_legend_handles_labels()
@@ -549,7 +585,7 @@ def friction_lines(mu, ratio):
         signs = [1.0] + ([-1.0] if any(r < 0.0 for r in ratio if not math.isnan(r)) else [])
         for sign in signs:
             axis.axhline(sign * mu, color="0.4", lw=0.8, ls="--")
-            axis.text(0.99, sign * mu, f"{'-' if sign < 0 else ''}$\\mu$ = {sign * mu:g}",
+            axis.text(0.99, sign * mu, f"$\\mu$ = {mu:g}" if sign > 0 else "$-\\mu$",
                       transform=axis.get_yaxis_transform(), fontsize=8, color="0.3",
                       ha="right", va="top" if sign > 0 else "bottom")
     return decorate
@@ -561,8 +597,19 @@ def same_curve(a, b):
     return all(abs(x - y) <= 1e-9 * scale for x, y in zip(a, b) if not math.isnan(x - y))
 
 
-def band_panels(h, u):
-    """The interface's own state: strains, band thickness (Eq. 26) and void ratio."""
+def floor_line(floor):
+    """Decorator: the band floor d_s is held at on a clamped band."""
+    def decorate(axis):
+        if floor:
+            axis.axhline(1000.0 * floor, color="0.4", lw=0.8, ls="--")
+            axis.text(0.99, 1000.0 * floor, "clamp floor", transform=axis.get_yaxis_transform(),
+                      fontsize=8, color="0.3", ha="right", va="bottom")
+    return decorate
+
+
+def band_panels(h, u, floor=None):
+    """The interface's own state: strains, band thickness (Eq. 26; with the floor it is held
+    at when clamped) and void ratio."""
     strains = [(percent(h["eps_n"]), "$\\varepsilon_N$")]
     if "eps_p1" in h:
         if "eps_p2" in h and not same_curve(h["eps_p1"], h["eps_p2"]):
@@ -574,12 +621,12 @@ def band_panels(h, u):
         panel("interface strains" if len(strains) > 1 else "interface normal strain",
               "strain [%] (extension +)", strains, u, U_LABEL),
         panel("shear band thickness $d_s = d_{s0}(1 + \\varepsilon_N)$", "$d_s$ [mm]",
-              [(mm(h["band_thickness"]), "")], u, U_LABEL),
+              [(mm(h["band_thickness"]), "")], u, U_LABEL, floor_line(floor)),
         panel("interface void ratio", "$e$ (interface)", [(h["e_interface"], "")], u, U_LABEL),
     ]
 
 
-def interface_test_panels(h, summary):
+def interface_test_panels(h, summary, floor=None):
     u = mm(h["u_t1"])
     shear = panel("interface shear stress", "shear stress $t_{t1}$ [kPa]", [(h["t_t1"], "")],
                   u, U_LABEL)
@@ -607,15 +654,15 @@ def interface_test_panels(h, summary):
                    [(h["s_p1"], "")], u, U_LABEL),
              panel("interface normal stress $\\sigma_{p2}$", "$\\sigma_{p2}$ [kPa]",
                    [(h["s_p2"], "")], u, U_LABEL)]
-            + sample + band_panels(h, u))
+            + sample + band_panels(h, u, floor))
 
 
 def draw_run(plt, run_dir, h, summary, panels, details, flags=None):
     """The grid of panels over u_t1, the stage key, the title; cycles.png for cyclic runs."""
     colours = stage_colours(plt, h["stage"])
     fig, axes = panel_grid(plt, len(panels))
-    draw_panels(axes, panels, h["stage"], colours, flags)
-    stage_key(fig, axes, colours, [clamped_handle()] if flags else [])
+    styles = draw_panels(axes, panels, h["stage"], colours, flags)
+    stage_key(fig, axes, colours, styles + ([clamped_handle()] if flags else []))
     set_title(fig, run_title(run_dir, summary, details), summary)
     out = save(fig, plt, run_dir)
     if is_cyclic(h):
@@ -629,16 +676,29 @@ def plot_interface_test(plt, run_dir, h, summary):
     flags = clamped_steps(h, summary)
     check_clamped_count(run_dir, flags, summary)
     details = [summary.get("formulation"), summary.get("normal_control")]
-    return draw_run(plt, run_dir, h, summary, interface_test_panels(h, summary), details, flags)
+    # The floor only where the band reached it: elsewhere it would squash the d_s curve.
+    panels = interface_test_panels(h, summary, clamp_floor(h, summary) if flags else None)
+    return draw_run(plt, run_dir, h, summary, panels, details, flags)
+
+
+def pair_series(h, summary, key):
+    """Several contact pairs: each pair's own `key` column (name.key), labelled by its name
+    and formulation; one pair: the main column."""
+    forms = {c.get("name"): c.get("formulation") for c in summary.get("contacts") or []}
+    names = [c[:-len("." + key)] for c in h if c.endswith("." + key)]
+    if len(names) < 2:
+        return [(h[key], "")]
+    return [(h[f"{n}.{key}"], f"{n} ({forms[n]})" if forms.get(n) else n)
+            for n in names[:len(LINE_STYLES)]]
 
 
 def boundary_value_panels(h, summary):
     u = mm(h["u_t1"])
     panels = [
         panel("mean shear traction on the soil", "shear stress $t_{t1}$ [kPa]",
-              [(h["t_t1"], "")], u, U_LABEL),
-        panel("mean normal traction", "normal stress $t_n$ [kPa]", [(h["t_n"], "")], u,
-              U_LABEL),
+              pair_series(h, summary, "t_t1"), u, U_LABEL),
+        panel("mean normal traction", "normal stress $t_n$ [kPa]",
+              pair_series(h, summary, "t_n"), u, U_LABEL),
         panel("normal displacement", "normal displacement $u_n$ [mm] (dilation +)",
               [(mm(h["u_n"]), "")], u, U_LABEL),
     ]
@@ -661,8 +721,10 @@ def plot_boundary_value(plt, run_dir, h, summary):
     """FE runs: t_t1, t_n, u_n (and the interface's state when there) over u_t1, in the
     style of the interface-test plots; cyclic runs also get cycles.png."""
     mesh = summary.get("mesh", {})
-    details = [summary.get("formulation") or "no interface",
-               f"{mesh.get('dimension', '?')}D, {mesh.get('elements', '?')} elements"]
+    form = summary.get("formulation") or "no interface"
+    if len(summary.get("contacts") or []) > 1:  # the main columns are one pair's
+        form += f" (columns of pair {summary.get('history_contact')})"
+    details = [form, f"{mesh.get('dimension', '?')}D, {mesh.get('elements', '?')} elements"]
     return draw_run(plt, run_dir, h, summary, boundary_value_panels(h, summary), details)
 
 
@@ -705,9 +767,9 @@ def compare(plt, out, dirs, height):
         ax[0].plot(u, tau, lw=1.2, label=label)
         ax[1].plot(u, sp1, lw=1.2, label=label)
         ax[2].plot(u, s22, lw=1.2, label=label)
-    interface_axes(ax[0], U_LABEL, "shear stress $t_{t1}$ [kPa]", "(a) interface shear stress")
-    interface_axes(ax[1], U_LABEL, "$\\sigma_{p1}$ [kPa]", "(b) interface normal stress $\\sigma_{p1}$")
-    interface_axes(ax[2], U_LABEL, "$\\sigma_{22}$ [kPa]", "(c) sample normal stress $\\sigma_{22}$")
+    style_axes(ax[0], U_LABEL, "shear stress $t_{t1}$ [kPa]", "(a) interface shear stress")
+    style_axes(ax[1], U_LABEL, "$\\sigma_{p1}$ [kPa]", "(b) interface normal stress $\\sigma_{p1}$")
+    style_axes(ax[2], U_LABEL, "$\\sigma_{22}$ [kPa]", "(c) sample normal stress $\\sigma_{22}$")
     ax[0].legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(out, dpi=DPI)
