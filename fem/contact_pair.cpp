@@ -66,6 +66,12 @@ protected:
     void add_point_state(std::size_t i, ContactPointRecord& r) const override {
         r.slipping = points_.output(coulomb_col::slipping)[i];
     }
+    void save_state(ContactPairSnapshot& s) const override {
+        save_columns(points_, coulomb_col::n_state, s);
+    }
+    void load_state(const ContactPairSnapshot& s) override {
+        load_columns(points_, coulomb_col::n_state, s);
+    }
 
 private:
     CoulombContactPoints points_;

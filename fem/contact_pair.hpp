@@ -120,6 +120,17 @@ struct ContactPointRecord {
     double subincrements = std::numeric_limits<double>::quiet_NaN();  // Algorithm 1, last call
 };
 
+// A pair's committed state between increments (SolverSnapshot): its points' committed state
+// columns (column after column), the prestress offsets of the penalty, and the novel
+// interface's relaxation of its targets.
+struct ContactPairSnapshot {
+    bool started = false; // the first pairing set the offsets and the points' initial state
+    std::vector<double> committed;
+    std::vector<double> gap_offset;
+    std::vector<double> relax;
+    std::vector<double> calm;
+};
+
 // Continuum stress (Voigt) at the integration points of an element, solver order.
 using ElementStresses = std::function<void(int element, std::vector<Voigt6>& stresses)>;
 
@@ -147,6 +158,9 @@ public:
     virtual ContactResultant resultant() const = 0;
     // Every point of the pair in the state of the last converged increment.
     virtual std::vector<ContactPointRecord> point_records() const = 0;
+    // The committed state, and back (throws std::invalid_argument for another pair's).
+    virtual ContactPairSnapshot snapshot() const = 0;
+    virtual void restore(const ContactPairSnapshot& snapshot) = 0;
     const ContactPairTimers& timers() const { return timers_; }
     const ContactPairCounters& counters() const { return counters_; }
     std::vector<std::array<int, 2>> couplings() const { return kinematics().couplings(); }

@@ -210,7 +210,46 @@ public:
         return out;
     }
 
+    ContactPairSnapshot snapshot() const override {
+        ContactPairSnapshot s;
+        s.started = !first_;
+        s.gap_offset = gap_offset_;
+        save_state(s);
+        return s;
+    }
+    void restore(const ContactPairSnapshot& s) override {
+        first_ = !s.started;
+        gap_offset_ = s.gap_offset;
+        load_state(s);
+    }
+
 protected:
+    // The points' committed state (and a pair's own) into and out of a snapshot.
+    virtual void save_state(ContactPairSnapshot& s) const = 0;
+    virtual void load_state(const ContactPairSnapshot& s) = 0;
+
+    // Column after column, the first n points of each: points.committed(c)[i].
+    template <class Points>
+    static void save_columns(const Points& points, int columns, ContactPairSnapshot& s) {
+        for (int c = 0; c < columns; ++c) {
+            const double* col = points.committed(c);
+            s.committed.insert(s.committed.end(), col, col + points.size());
+        }
+    }
+    template <class Points>
+    void load_columns(Points& points, int columns, const ContactPairSnapshot& s) const {
+        if (s.committed.size() != static_cast<std::size_t>(columns) * points.size()) {
+            throw std::invalid_argument(
+                fmt::format("contact pair '{}': a snapshot of {} state values for {} points "
+                            "of {} columns",
+                            spec_.name, s.committed.size(), points.size(), columns));
+        }
+        for (int c = 0; c < columns; ++c) {
+            std::copy_n(s.committed.begin() + static_cast<long>(c * points.size()), points.size(),
+                        points.committed(c));
+        }
+    }
+
     virtual bool needs_stress() const = 0; // s_p1, s_p2 every increment
     virtual void refresh_jacobian() {}     // Jacobian columns of the last evaluate() if deferred
     virtual void start(const std::vector<Voigt6>& local_stress) = 0;

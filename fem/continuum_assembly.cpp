@@ -88,6 +88,34 @@ std::vector<double> ContinuumAssembly::state(int element, int point) const {
     return set_of(element).material->state(point_of(element, point));
 }
 
+std::vector<double> ContinuumAssembly::committed_states() const {
+    std::vector<double> out;
+    for (const auto& set : sets_) {
+        for (std::size_t i = 0; i < set->material->size(); ++i) {
+            const std::vector<double> y = set->material->state(i);
+            out.insert(out.end(), y.begin(), y.end());
+        }
+    }
+    return out;
+}
+
+void ContinuumAssembly::restore_committed_states(const std::vector<double>& states) {
+    std::size_t at = 0;
+    for (const auto& set : sets_) {
+        const auto n = static_cast<std::size_t>(set->material->n_state());
+        for (std::size_t i = 0; i < set->material->size(); ++i) {
+            if (at + n > states.size()) {
+                throw std::invalid_argument("snapshot of another model: too few material states");
+            }
+            set->material->set_state(i, std::span<const double>(states.data() + at, n));
+            at += n;
+        }
+    }
+    if (at != states.size()) {
+        throw std::invalid_argument("snapshot of another model: too many material states");
+    }
+}
+
 std::vector<double> ContinuumAssembly::trial_state(int element, int point) const {
     return set_of(element).material->trial_state(point_of(element, point));
 }

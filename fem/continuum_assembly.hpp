@@ -66,7 +66,10 @@ public:
     void tangent(const Mesh& mesh, SparseSystem& system, PrescribedCoupling* coupling);
     void commit();
 
-    std::vector<double> state(int element, int point) const;       // committed
+    std::vector<double> state(int element, int point) const; // committed
+    // Every set's committed states, set after set, point after point (snapshots), and back.
+    std::vector<double> committed_states() const;
+    void restore_committed_states(const std::vector<double>& states);
     std::vector<double> trial_state(int element, int point) const; // last evaluation
     void element_stresses(int element, std::vector<Voigt6>& out, bool trial) const;
     // Density of every element (t/m^3), for the gravity load.

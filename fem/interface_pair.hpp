@@ -264,6 +264,17 @@ protected:
         r.subincrements = points_.output(contact_col::subincrements)[i];
     }
 
+    void save_state(ContactPairSnapshot& s) const override {
+        save_columns(points_, ContactPoints<M>::n_state_cols, s);
+        s.relax = relax_;
+        s.calm.assign(calm_.begin(), calm_.end());
+    }
+    void load_state(const ContactPairSnapshot& s) override {
+        load_columns(points_, ContactPoints<M>::n_state_cols, s);
+        relax_ = s.relax;
+        calm_.assign(s.calm.begin(), s.calm.end());
+    }
+
 private:
     typename M::Params params_;
     ContactOptions base_only_;  // the spec's options without the Eq. 37 lanes

@@ -275,18 +275,31 @@ StageResult StaticSolver::run_stage(const Stage& stage, const IncrementCallback&
     if (stage_count_ == 1) {
         measure_initial_imbalance();
     }
+    return stage_from(stage, StageCursor{}, on_increment, on_iteration);
+}
+
+StageResult StaticSolver::resume_stage(const Stage& stage, const StageCursor& from,
+                                       const IncrementCallback& on_increment,
+                                       const IncrementCallback& on_iteration) {
+    return stage_from(stage, from, on_increment, on_iteration);
+}
+
+StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
+                                     const IncrementCallback& on_increment,
+                                     const IncrementCallback& on_iteration) {
     StageResult result;
     const int steps = std::max(1, stage.steps);
     const int max_cuts = std::max(0, settings_.max_cuts);
-    for (int k = 1; k <= steps; ++k) {
+    for (int k = std::max(1, from.step); k <= steps; ++k) {
         // Automatic increment control inside the nominal step [t_a, t_step]: the increment is
         // halved on failure (up to max_cuts times) and doubled again after growth_after
         // converged increments in a row, never past the step's end, so a hard stretch costs
         // small increments only while it lasts.
-        double t_a = double(k - 1) / steps;
+        const bool resumed = k == from.step;
+        double t_a = resumed ? from.t_a : double(k - 1) / steps;
         const double t_step = double(k) / steps;
-        int depth = 0;
-        int streak = 0;
+        int depth = resumed ? from.depth : 0;
+        int streak = resumed ? from.streak : 0;
         while (true) {
             const double h = 1.0 / (double(steps) * std::ldexp(1.0, depth));
             const bool last = t_a + h >= t_step - 1.0e-12 * h;
@@ -304,20 +317,22 @@ StageResult StaticSolver::run_stage(const Stage& stage, const IncrementCallback&
                 counters_.worst_accepted_residual =
                     std::max(counters_.worst_accepted_residual, info.residuals.back());
                 t_a = t_b;
-                if (on_increment) {
-                    on_increment(info);
-                }
-                if (last) {
-                    break;
-                }
-                // Grow back only to a size that divides the rest of the step evenly.
-                if (depth > 0 && ++streak >= settings_.growth_after) {
+                if (!last && depth > 0 && ++streak >= settings_.growth_after) {
+                    // Grow back only to a size that divides the rest of the step evenly.
                     const double rest = (t_step - t_a) * double(steps) * std::ldexp(1.0, depth);
                     if (std::fmod(std::round(rest), 2.0) == 0.0) {
                         --depth;
                         streak = 0;
                         ++counters_.increment_growths;
                     }
+                }
+                info.next =
+                    last ? StageCursor{k + 1, t_step, 0, 0} : StageCursor{k, t_a, depth, streak};
+                if (on_increment) {
+                    on_increment(info);
+                }
+                if (last) {
+                    break;
                 }
                 continue;
             }
@@ -337,6 +352,53 @@ StageResult StaticSolver::run_stage(const Stage& stage, const IncrementCallback&
         }
     }
     return result;
+}
+
+SolverSnapshot StaticSolver::snapshot() const {
+    SolverSnapshot s;
+    s.stage_count = stage_count_;
+    s.u = u_;
+    s.u_stage_start = u_stage_start_;
+    s.du_last = du_last_;
+    s.f_int_committed = f_int_committed_;
+    s.f_ext_committed = f_ext_committed_;
+    s.dt_last = dt_last_;
+    s.reference_sum = reference_sum_;
+    s.committed_references = committed_references_;
+    s.material_states = continuum_->committed_states();
+    for (const auto& c : contacts_.pairs()) {
+        s.contacts.push_back(c->snapshot());
+    }
+    s.imbalance = imbalance_;
+    return s;
+}
+
+void StaticSolver::restore(const Stage& stage, const SolverSnapshot& s) {
+    if (s.contacts.size() != contacts_.pairs().size() || s.u.size() != u_.size()) {
+        throw std::invalid_argument("snapshot of another model: the number of DOFs or of "
+                                    "contact pairs differs");
+    }
+    continuum_->restore_committed_states(s.material_states);
+    // The pairs first (their first pairing must not initialise them again), then the stage
+    // as its start prepared it, then the pairs once more (the stage start's pairing moved
+    // their per-increment relaxation on).
+    for (std::size_t k = 0; k < s.contacts.size(); ++k) {
+        contacts_.pairs()[k]->restore(s.contacts[k]);
+    }
+    stage_count_ = s.stage_count - 1;
+    u_ = s.u_stage_start;
+    begin_stage(stage);
+    for (std::size_t k = 0; k < s.contacts.size(); ++k) {
+        contacts_.pairs()[k]->restore(s.contacts[k]);
+    }
+    u_ = s.u;
+    du_last_ = s.du_last;
+    dt_last_ = s.dt_last;
+    f_int_committed_ = s.f_int_committed;
+    f_ext_committed_ = s.f_ext_committed;
+    reference_sum_ = s.reference_sum;
+    committed_references_ = s.committed_references;
+    imbalance_ = s.imbalance;
 }
 
 } // namespace ifsim::fem

@@ -89,6 +89,16 @@ struct SolverTimers {
     double contact_scatter = 0.0; // tractions to nodal forces, tangent entries into the matrix
 };
 
+// Where the increment control of a stage stands: the nominal step, the start of the next
+// increment in it, the halvings in force and the converged increments since the last change
+// (a committed increment's `next`, from which a resumed run continues).
+struct StageCursor {
+    int step = 1;
+    double t_a = 0.0;
+    int depth = 0;
+    int streak = 0;
+};
+
 struct IncrementInfo {
     int stage = 0; // 1-based count of run_stage calls
     int step = 0;  // nominal step of the stage (1-based)
@@ -101,6 +111,7 @@ struct IncrementInfo {
     double gather_change = 0.0;      // the last re-gather's largest relative target change
     std::vector<double> residuals;   // relative residual at each evaluation
     std::vector<double> corrections; // relative correction of each Newton iteration
+    StageCursor next;                // after a converged increment: where the stage goes on
 };
 
 // The out-of-balance force of the initial state (stresses, loads and supports of the first
@@ -113,6 +124,20 @@ struct InitialImbalance {
     int node = -1;         // node and direction of the largest entry
     int direction = -1;
     double force = 0.0; // kN (per m in 2D)
+};
+
+// The committed state of a run between increments, everything the next increments depend
+// on (checkpoints: io/boundary_value/boundary_value_checkpoint.cpp). Counters and timers are
+// not part of it.
+struct SolverSnapshot {
+    int stage_count = 0; // run_stage calls so far, the running stage's included
+    std::vector<double> u, u_stage_start, du_last, f_int_committed, f_ext_committed;
+    double dt_last = 0.0;
+    double reference_sum = 0.0;
+    long committed_references = 0;
+    std::vector<double> material_states; // every set's points, n_state values each
+    std::vector<ContactPairSnapshot> contacts;
+    InitialImbalance imbalance;
 };
 
 struct StageResult {
@@ -133,6 +158,14 @@ public:
     // evaluation of an increment attempt (progress of long increments).
     StageResult run_stage(const Stage& stage, const IncrementCallback& on_increment = {},
                           const IncrementCallback& on_iteration = {});
+    // The committed state, and a run continued from one: restore() prepares `stage` (the one
+    // the snapshot was taken in) as its start did, then sets the committed state; the stage
+    // then goes on with resume_stage() from the increment's `next` cursor.
+    SolverSnapshot snapshot() const;
+    void restore(const Stage& stage, const SolverSnapshot& snapshot);
+    StageResult resume_stage(const Stage& stage, const StageCursor& from,
+                             const IncrementCallback& on_increment = {},
+                             const IncrementCallback& on_iteration = {});
 
     // Committed results.
     const std::vector<double>& displacement() const { return u_; }
@@ -191,6 +224,9 @@ private:
     // After Newton converged: re-gathers the in-plane targets; true when they settled.
     bool targets_settled(IncrementInfo& info, std::string& error);
     void commit_increment(double dt);
+    StageResult stage_from(const Stage& stage, StageCursor from,
+                           const IncrementCallback& on_increment,
+                           const IncrementCallback& on_iteration);
     void measure_initial_imbalance();
 
     Mesh mesh_;

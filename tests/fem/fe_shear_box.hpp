@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -48,12 +49,14 @@ struct ShearBoxRun {
     SolverTimers timers;
 };
 
-inline ShearBoxRun run_shear_box(const ShearBoxOptions& o) {
-    std::unique_ptr<tbb::global_control> limit;
-    if (o.threads > 0) {
-        limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                      static_cast<std::size_t>(o.threads));
-    }
+// The box's solver (mesh, materials, contact pair) and its two stages.
+struct ShearBox {
+    std::unique_ptr<StaticSolver> solver;
+    Stage consolidation, shear;
+    int plate_node = 0;
+};
+
+inline ShearBox build_shear_box(const ShearBoxOptions& o) {
     const bool d3 = o.dim == 3;
     const int vert = d3 ? 2 : 1;
     Mesh mesh;
@@ -96,7 +99,10 @@ inline ShearBoxRun run_shear_box(const ShearBoxOptions& o) {
     SolverSettings settings;
     settings.max_iterations = o.max_iterations;
     settings.max_gathers = o.max_gathers;
-    StaticSolver solver(mesh, {plate, soil}, settings);
+    ShearBox box;
+    box.solver = std::make_unique<StaticSolver>(mesh, std::vector<ElementSetMaterial>{plate, soil},
+                                                settings);
+    StaticSolver& solver = *box.solver;
     ContactPairSpec c;
     c.slave_faces = "soil.bottom";
     c.master_faces = "plate.top";
@@ -105,7 +111,7 @@ inline ShearBoxRun run_shear_box(const ShearBoxOptions& o) {
     c.options.interface.formulation = o.formulation;
     c.options.interface.max_subincrement = o.max_subincrement;
     c.options.jacobian = o.jacobian;
-    c.initial_state = [&](const Voigt6& s) {
+    c.initial_state = [e0, R](const Voigt6& s) { // by value: the pair outlives this function
         std::vector<double> z(Hypoplasticity::n_state, 0.0);
         for (std::size_t k = 0; k < 5; ++k) {
             z[k] = s[k];
@@ -135,8 +141,25 @@ inline ShearBoxRun run_shear_box(const ShearBoxOptions& o) {
     st.equal_displacements.push_back({"soil.top", vert});
     st.equal_displacements.push_back({"soil.bottom", vert});
     st.pressures.push_back({"soil.top", 100.0, 100.0});
+    box.consolidation = st;
+    st.name = "shear";
+    st.steps = o.steps;
+    st.displacements[0].change = o.displacement; // plate.all along x
+    box.shear = st;
+    box.plate_node = mesh.node_set("plate.all")[0];
+    return box;
+}
+
+inline ShearBoxRun run_shear_box(const ShearBoxOptions& o) {
+    std::unique_ptr<tbb::global_control> limit;
+    if (o.threads > 0) {
+        limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                      static_cast<std::size_t>(o.threads));
+    }
+    ShearBox box = build_shear_box(o);
+    StaticSolver& solver = *box.solver;
     ShearBoxRun run;
-    auto res = solver.run_stage(st);
+    auto res = solver.run_stage(box.consolidation);
     if (!res.ok) {
         run.ok = false;
         run.reason = res.reason;
@@ -144,11 +167,8 @@ inline ShearBoxRun run_shear_box(const ShearBoxOptions& o) {
         run.counters = solver.counters();
         return run;
     }
-    st.name = "shear";
-    st.steps = o.steps;
-    st.displacements[0].change = o.displacement; // plate.all along x
-    const int plate_node = mesh.node_set("plate.all")[0];
-    res = solver.run_stage(st, [&](const IncrementInfo& info) {
+    const int plate_node = box.plate_node;
+    res = solver.run_stage(box.shear, [&](const IncrementInfo& info) {
         const ContactResultant r = solver.contacts()[0]->resultant();
         run.u_t1.push_back(solver.displacement()[static_cast<std::size_t>(plate_node * o.dim)]);
         run.t_t1.push_back(r.shear[0]);
