@@ -321,6 +321,12 @@ private:
             }
         }
         const double k_N = cp.input(contact_col::k_N)[i]; // an open lane keeps the penalty
+        double dtau_dgn[2] = {0.0, 0.0};
+        if (open_lane && fade > 0.0 && lanes_.col(t_N)[i] < 0.0) {
+            for (int a = 0; a < 2; ++a) {
+                dtau_dgn[a] = lanes_.col(state + 3 + a)[i] / sigma_N * k_N;
+            }
+        }
         for (int side = 0; side < 2; ++side) {
             const double sgn = side == 0 ? 1.0 : -1.0; // gap change per +u: slave +, master -
             for (int d = 0; d < ndim; ++d) {
@@ -330,9 +336,10 @@ private:
                                       cp.input(contact_col::t2 + d)[i]};
                 cp.output(contact_col::jacobian + 0 + 3 * c)[i] = k_N * sgn * n_d;
                 for (int a = 0; a < 2; ++a) {
-                    // dg_T,b = -(delta g . t_b)
+                    // dg_T,b = -(delta g . t_b); an open lane's shear tau_band t_N / sigma_N
+                    // also follows t_N = k_N g_N.
                     cp.output(contact_col::jacobian + 1 + a + 3 * c)[i] =
-                        -sgn * (dtau[a][0] * tt[0] + dtau[a][1] * tt[1]);
+                        -sgn * (dtau[a][0] * tt[0] + dtau[a][1] * tt[1]) + dtau_dgn[a] * sgn * n_d;
                 }
             }
         }

@@ -216,9 +216,11 @@ void ContinuumAssembly::strains(const Mesh& mesh, std::span<const double> du) {
 }
 
 bool ContinuumAssembly::update(std::string& error) {
+    last_unreliable_ = 0;
     for (auto& s : sets_) {
         const UpdateReport rep = s->material->update(settings_.update);
         counters_.constitutive_evaluations += static_cast<long>(rep.points);
+        last_unreliable_ += static_cast<long>(rep.unreliable);
         if (rep.failed > 0) {
             counters_.failed_point_updates += static_cast<long>(rep.failed);
             const auto local = static_cast<int>(rep.first_failed) / geom_.nip;
@@ -247,6 +249,7 @@ void ContinuumAssembly::commit() {
     for (auto& s : sets_) {
         s->material->commit();
     }
+    counters_.unreliable_committed += last_unreliable_;
 }
 
 template <int D>

@@ -33,6 +33,7 @@ struct ContinuumCounters {
     long tangent_fallbacks = 0;        // points whose perturbation lanes failed (rate used)
     long failed_point_updates = 0;     // base updates with status failed
     long k0_points = 0;                // integration points given a K0 initial stress
+    long unreliable_committed = 0;     // committed point updates on which a safeguard acted
 };
 
 // The prescribed DOFs' part of a tangent (the tangent predictor): while assembling, every
@@ -98,6 +99,7 @@ private:
     std::vector<int> local_of_element_;
     std::vector<double> hourglass_k_;                       // per element (reduced integration)
     std::vector<std::array<const double*, 6>> stress_cols_; // per set: trial stress columns
+    long last_unreliable_ = 0; // of the last update, the one commit() accepts
     ContinuumCounters counters_;
 };
 

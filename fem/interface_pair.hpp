@@ -130,8 +130,8 @@ protected:
         relax_.resize(kin_->n_points(), 1.0);
         bool any = false;
         for (std::size_t i = 0; i < kin_->n_points(); ++i) {
-            if (points_.output(contact_col::status)[i] > -0.5 || relax_[i] <= 0.0) {
-                continue;
+            if (points_.output(contact_col::status)[i] > -0.5 || relax_[i] <= 0.0 || open(i)) {
+                continue; // relaxing the targets of an open point would change nothing
             }
             relax_[i] = relax_[i] > 0.2 ? 0.5 * relax_[i] : 0.0;
             calm_.resize(relax_.size(), 0);
@@ -153,8 +153,8 @@ protected:
         extrapolate(stresses);
         double change = 0.0;
         for (std::size_t i = 0; i < before.size(); ++i) {
-            if (!kin_->point(i).active) {
-                continue;
+            if (!kin_->point(i).active || open(i)) {
+                continue; // an open point does not use the continuum's in-plane stresses
             }
             for (std::size_t c = 1; c <= 2; ++c) {
                 const double ref = std::max({std::abs(before[i][c]), 1.0});
@@ -162,6 +162,11 @@ protected:
             }
         }
         return change;
+    }
+
+    // t_N of the last evaluation above -open_threshold: the band runs on its own targets.
+    bool open(std::size_t i) const {
+        return points_.input(contact_col::t_N)[i] > -spec_.options.interface.open_threshold;
     }
 
     void new_increment() override {

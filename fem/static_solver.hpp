@@ -46,6 +46,7 @@ struct SolverCounters {
     long tangent_evaluations = 0;       // of which perturbation lanes
     long tangent_fallbacks = 0;         // points whose perturbation lanes failed (rate used)
     long failed_point_updates = 0;      // base updates with status failed
+    long unreliable_point_updates = 0;  // committed point updates on which a safeguard acted
     long patterns_built = 0;            // sparse patterns (one per distinct DOF map)
     long gravity_load_builds = 0;       // unit gravity vectors integrated
     long gravity_load_applications = 0; // evaluations with gravity in the external force

@@ -38,6 +38,7 @@ const SolverCounters& StaticSolver::counters() const {
     counters_.tangent_evaluations = m.tangent_evaluations;
     counters_.tangent_fallbacks = m.tangent_fallbacks;
     counters_.failed_point_updates = m.failed_point_updates;
+    counters_.unreliable_point_updates = m.unreliable_committed;
     counters_.k0_points = m.k0_points;
     const LoadCounters& l = loads_.counters();
     counters_.gravity_load_builds = l.gravity_load_builds;

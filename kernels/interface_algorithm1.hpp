@@ -109,15 +109,14 @@ Algorithm1Lane<T, M::n_state> interface_begin(const InterfaceSettings& s,
     const T d_s = simd::select(c.below, band_floor<T>(s), d_s_eq26);
     // Contact open (t_N above -open_threshold). Below the threshold the models' stiffness
     // vanishes with the stress and Algorithm 1 cannot follow t_N, so a touching point
-    // (-threshold < t_N < 0) integrates its band at the targets scaled up homothetically to
-    // t_N = -threshold, and the caller scales its tractions back down by |t_N| / threshold:
-    // the same band as at the threshold (continuous there), its shear still responding to
-    // slip. A separated point (t_N >= 0) keeps its state and transmits nothing.
+    // (-threshold < t_N < 0) integrates its band at sigma_N = -threshold, and the caller scales
+    // its tractions down by |t_N| / threshold: its shear still answers slip, and with the
+    // Stutz formulation it is the closed band's at the threshold. A separated point
+    // (t_N >= 0) keeps its state and transmits nothing.
     c.open = in.t_N > -s.open_threshold;
     const Mask separated = !(in.t_N < 0.0);
     c.run = c.finite_in && band_ok && !separated;
-    const T up =
-        simd::select(c.open && !separated, T(s.open_threshold) / simd::abs(in.t_N), T(1.0));
+    const Mask touching = c.open && !separated;
 
     // Eq. 25: tan(delta gamma) = delta g_T / d_s.
     const T safe_ds = simd::select(band_ok, d_s, T(s.shear_band_thickness));
@@ -129,13 +128,20 @@ Algorithm1Lane<T, M::n_state> interface_begin(const InterfaceSettings& s,
     // follow a straight path from the start values (sigma_N, sigma_p1, sigma_p2 of the converged
     // state), so a change of t_N or of the continuum stress is spread over the sub-increments
     // instead of being forced into the first one.
-    // A touching band keeps the in-plane stress ratio of its state (the continuum's in-plane
-    // stresses, scaled up with t_N, would move its targets with every change of t_N: a band
-    // at its limit surface then answers a perturbation of t_N with a kink).
-    const T touching_scale = T(s.open_threshold) / simd::max(simd::abs(st.y[0]), T(1.0e-300));
-    const Mask touching = c.open && !separated;
-    c.target_end = {in.t_N * up, simd::select(touching, st.y[1] * touching_scale, in.s_p1),
-                    simd::select(touching, st.y[2] * touching_scale, in.s_p2)};
+    // A touching novel band keeps the in-plane stress ratio of its state (the continuum's
+    // in-plane stresses scaled up with t_N moved its targets with every change of t_N: a band
+    // at its limit surface answered a perturbation of t_N with a kink). So its sigma_p jumps
+    // where it crosses the threshold from the continuum's to its own ratio (Eq. 13 admits a
+    // jump of sigma_p; docs/interface.md). A state without compression (sigma_N > -1e-3
+    // threshold, e.g. a band started from a stress-free continuum) takes isotropic targets.
+    const T thr = T(s.open_threshold);
+    const Mask own_ratio = st.y[0] < T(-1.0e-3) * thr;
+    const T ratio_scale = thr / simd::select(own_ratio, -st.y[0], thr);
+    const T touching_p1 = simd::select(own_ratio, st.y[1] * ratio_scale, -thr);
+    const T touching_p2 = simd::select(own_ratio, st.y[2] * ratio_scale, -thr);
+    c.target_end = {simd::select(touching, -thr, in.t_N),
+                    simd::select(touching, touching_p1, in.s_p1),
+                    simd::select(touching, touching_p2, in.s_p2)};
     c.target_start = {st.y[0], st.y[1], st.y[2]};
     // Sub-increments needed for the change of the normal targets: at most max_normal_change of
     // the stress per sub-increment (a change of t_N without shear would otherwise be one step).
@@ -286,7 +292,7 @@ void interface_step(const typename M::Params& mp, const InterfaceSettings& s,
     c.active = c.active && !limit;
 }
 
-// The result of one evaluation: the new state into st (failed and open lanes: unchanged, st
+// The result of one evaluation: the new state into st (failed and separated lanes: unchanged, st
 // must still hold the start state) and the statistics into stats.
 template <class M, class T>
 void interface_end(const InterfaceSettings& s, const Algorithm1Lane<T, M::n_state>& c,
@@ -300,7 +306,7 @@ void interface_end(const InterfaceSettings& s, const Algorithm1Lane<T, M::n_stat
                                              used, cur.last_subincrement);
     }
     stats = c.stats;
-    // Failed lanes keep their start state; open lanes keep theirs and carry no traction.
+    // Failed and separated lanes keep their start state (a separated one carries no traction).
     stats.status = simd::select(c.failed, T(lane_status::failed), T(lane_status::ok));
     stats.open = simd::select(c.open && c.finite_in, T(1.0), T(0.0));
     stats.cause = simd::select(c.failed, c.cause, T(0.0));

@@ -47,10 +47,11 @@ struct InterfaceSettings {
     double min_band_fraction = 0.05;
     // Largest change of the normal targets (t_N, s_p) per sub-increment, relative to their size.
     double max_normal_change = 0.02;
-    // Contact counts as open (state kept, no shear traction; the normal traction is the
-    // penalty's) while t_N > -open_threshold (kPa). Below about 1 kPa the models' stiffness
-    // vanishes with the stress (hypoplasticity: p^(1-n)) and Algorithm 1 cannot follow a
-    // contact that lifts off or closes again; the band keeps the state it had at 1 kPa.
+    // Contact counts as open while t_N > -open_threshold (kPa): the normal traction is the
+    // penalty's; below about 1 kPa the models' stiffness vanishes with the stress
+    // (hypoplasticity: p^(1-n)) and Algorithm 1 cannot follow t_N, so a touching point
+    // (t_N < 0) shears its band at sigma_N = -open_threshold and its shear is scaled by
+    // |t_N| / open_threshold; a separated one (t_N >= 0) keeps its state (interface_begin).
     double open_threshold = 1.0;
     // true: instead of stopping, hold d_s at min_band_fraction * d_s0 and go on (counted in
     // InterfaceStats::band_clamped). The results past that point rest on an assumed thickness.

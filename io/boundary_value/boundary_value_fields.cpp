@@ -114,6 +114,17 @@ bool FieldOutput::due(long increment, double time, bool stage_end) {
     return due;
 }
 
+void FieldOutput::flush() const {
+    mesh_pvd_->flush();
+    for (const auto& p : contact_pvd_) {
+        p->flush();
+    }
+}
+
+std::vector<double> FieldOutput::unreached_times() const {
+    return {schedule_.times.begin() + static_cast<long>(next_time_), schedule_.times.end()};
+}
+
 std::vector<std::string> FieldOutput::collections() const {
     std::vector<std::string> out{mesh_pvd_->path().filename().string()};
     for (const auto& p : contact_pvd_) {

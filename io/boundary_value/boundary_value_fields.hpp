@@ -30,6 +30,10 @@ public:
     // Writes the committed state of the solver as output number `increment` at `time`.
     void write(const fem::StaticSolver& solver, long increment, double time);
 
+    // Rewrites the collections (at stage ends and at the end of the run).
+    void flush() const;
+    // Named times no increment reached (the run ended before them).
+    std::vector<double> unreached_times() const;
     std::size_t outputs() const { return outputs_; }
     double seconds() const { return seconds_; }
     // Files relative to the run folder (the collections), for summary.json.

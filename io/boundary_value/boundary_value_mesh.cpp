@@ -45,9 +45,10 @@ fem::Mesh read_mesh_file(const TableReader& t, const MeshSpec& spec) {
     try {
         read = read_gmsh_mesh(spec.path.string());
     } catch (const MeshFileError& e) {
-        t.fail("file", fmt::format("expected a readable Gmsh mesh (ASCII MSH 4.1 or 2.2 of "
-                                   "quadrangles or hexahedra): {}",
-                                   e.what()));
+        t.fail("file",
+               fmt::format("expected a readable Gmsh mesh (MSH 4.1 or 2.2, ASCII or binary, of "
+                           "quadrangles or hexahedra): {}",
+                           e.what()));
     }
     if (read.mesh.dim() != spec.dimension) {
         t.fail("dimension", fmt::format("expected the dimension of the mesh file {} ({}), got {}",

@@ -97,6 +97,7 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
     HistoryWriter history(dir, boundary_value_history_columns(scene));
     ProgressLine line(progress, scene.total_steps(), static_cast<int>(scene.stages.size()));
     std::unique_ptr<fem::StaticSolver> solver;
+    std::optional<FieldOutput> fields; // only when the scene asks: no field code runs otherwise
     try {
         const auto t0 = Clock::now();
         solver = make_solver(scene, simd);
@@ -109,8 +110,6 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
             write_boundary_value_row(history, row);
             out.row_seconds += since(t1);
         }
-        // Field output only when the scene asks for it: no field code runs otherwise.
-        std::optional<FieldOutput> fields;
         if (scene.output.fields.enabled()) {
             fields.emplace(scene, dir);
             out.field_collections = fields->collections();
@@ -163,10 +162,9 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
                 out.reason = r.reason;
             }
             steps_before += stage.steps;
-        }
-        if (fields) {
-            out.field_outputs = fields->outputs();
-            out.field_seconds = fields->seconds();
+            if (fields) {
+                fields->flush();
+            }
         }
     } catch (const std::exception& e) {
         // An invalid set-up or a writer error in the middle of the run: keep the rows so far.
@@ -174,6 +172,18 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
         out.reason = fmt::format("run aborted: {}", e.what());
     }
     line.finish();
+    if (fields) {
+        // Also after a failed run or a writer error: the files written so far are listed.
+        try {
+            fields->flush();
+        } catch (const std::exception& e) {
+            out.ok = false;
+            out.reason = fmt::format("field output: {}", e.what());
+        }
+        out.field_outputs = fields->outputs();
+        out.field_seconds = fields->seconds();
+        out.field_times_unreached = fields->unreached_times();
+    }
     if (solver) {
         out.counters = solver->counters();
         out.imbalance = solver->initial_imbalance();
@@ -289,6 +299,14 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
         k["contact_band_clamped"] = c.contact_band_clamped;
     }
     k["patterns_built"] = c.patterns_built;
+    k["unreliable_point_updates"] = c.unreliable_point_updates;
+    if (c.unreliable_point_updates > 0) {
+        summary.warnings.push_back(
+            {"unreliable_updates", static_cast<double>(c.unreliable_point_updates),
+             fmt::format("{} committed material-point update(s) ended on a safeguard (pressure "
+                         "floor or tension cut-off): the stress path there is not the model's own",
+                         c.unreliable_point_updates)});
+    }
     if (c.contact_relaxed_point_updates > 0.0) {
         summary.warnings.push_back(
             {"relaxed_interface_targets", c.contact_relaxed_point_updates,
@@ -378,6 +396,7 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
                        {"outputs", run.field_outputs},
                        {"collections", run.field_collections},
                        {"materials", run.field_materials},
+                       {"times_not_reached", run.field_times_unreached},
                        {"seconds", run.field_seconds}};
     }
     if (!scene.description.empty()) {

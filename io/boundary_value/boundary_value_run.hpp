@@ -34,6 +34,7 @@ struct BoundaryValueRunOutcome {
     double field_seconds = 0.0;
     std::vector<std::string> field_collections; // .pvd files relative to DIR
     std::vector<std::string> field_materials;   // names of the cell array `material`
+    std::vector<double> field_times_unreached;  // named times after the run's last increment
 };
 
 // Writes DIR/history.csv. Throws std::runtime_error only when history.csv cannot be written

@@ -184,27 +184,10 @@ int run_command(const RunOptions& opt) {
     const auto t_start = Clock::now();
     const ThreadLimit threads(opt.threads);
     const fs::path dir(opt.out);
-    FolderPreparation earlier;
-    try {
-        earlier = prepare_run_folder(dir, opt.replace);
-    } catch (const std::exception& e) {
-        fmt::print(stderr, "ifsim: error: {}\n", e.what());
-        return exit_code::io_error;
-    }
-    if (!earlier.moved.empty() && !opt.quiet) {
-        fmt::print(stderr, "ifsim: {}\n", earlier.message(dir));
-    }
-
     RunSummary summary;
     summary.scene = opt.scene;
     summary.threads = threads.threads();
     summary.details["overrides"] = opt.sets;
-    if (!earlier.moved.empty()) {
-        summary.details["earlier_run"] = {
-            {"files", earlier.moved},
-            {"moved_to", earlier.removed ? nlohmann::ordered_json(nullptr)
-                                         : nlohmann::ordered_json(earlier.moved_to.string())}};
-    }
     summary.details["path"] = opt.scalar ? "scalar" : "simd";
     summary.details["lanes"] = opt.scalar ? std::size_t{1} : simd::lanes;
 
@@ -212,6 +195,7 @@ int run_command(const RunOptions& opt) {
     Scene scene;
     toml::table table;
     std::string mesh_path; // a boundary-value scene's mesh file, resolved
+    std::string scene_error;
     try {
         table = load_scene_table(opt.scene);
         for (const auto& set : opt.sets) {
@@ -237,13 +221,38 @@ int run_command(const RunOptions& opt) {
                              line_in_file(*table.get("kind")));
         }
     } catch (const SceneError& e) {
-        std::string message = e.what();
+        scene_error = e.what();
         if (const auto set = override_behind(e.key(), opt.sets)) {
-            message += fmt::format(" (from --set {})", *set);
+            scene_error += fmt::format(" (from --set {})", *set);
         }
-        fmt::print(stderr, "ifsim: error: {}\n", message);
+    }
+    // The folder is prepared once the scene is read: the files being run (a scene copy run
+    // in place, its mesh) stay, and a scene error never removes an earlier run (--replace
+    // applies to runs that start).
+    FolderPreparation earlier;
+    try {
+        std::vector<fs::path> keep = {opt.scene};
+        if (!mesh_path.empty()) {
+            keep.emplace_back(mesh_path);
+        }
+        earlier = prepare_run_folder(dir, opt.replace && scene_error.empty(), keep);
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "ifsim: error: {}\n", e.what());
+        return exit_code::io_error;
+    }
+    if (!earlier.moved.empty() && !opt.quiet) {
+        fmt::print(stderr, "ifsim: {}\n", earlier.message(dir));
+    }
+    if (!earlier.moved.empty()) {
+        summary.details["earlier_run"] = {
+            {"files", earlier.moved},
+            {"moved_to", earlier.removed ? nlohmann::ordered_json(nullptr)
+                                         : nlohmann::ordered_json(earlier.moved_to.string())}};
+    }
+    if (!scene_error.empty()) {
+        fmt::print(stderr, "ifsim: error: {}\n", scene_error);
         summary.ok = false;
-        summary.reason = "scene error: " + message;
+        summary.reason = "scene error: " + scene_error;
         summary.wall_s = since(t_start);
         summary.phases = {{"parse", summary.wall_s}};
         return write_summary_or_report(dir, summary, exit_code::bad_input);
@@ -282,15 +291,15 @@ int run_command(const RunOptions& opt) {
     }
     summary.wall_s = since(t_start);
 
+    // A degraded result is printed even with --quiet: a reader must not miss it.
+    for (const RunWarning& w : summary.warnings) {
+        fmt::print(stderr, "ifsim: WARNING: degraded result: {}\n", w.message);
+    }
     if (!summary.ok) {
         fmt::print(stderr, "ifsim: run failed: {}\n", summary.reason);
         return write_summary_or_report(dir, summary, exit_code::run_failed);
     }
     const int code = write_summary_or_report(dir, summary, exit_code::ok);
-    // A degraded result is printed even with --quiet: a reader must not miss it.
-    for (const RunWarning& w : summary.warnings) {
-        fmt::print(stderr, "ifsim: WARNING: degraded result: {}\n", w.message);
-    }
     if (code == exit_code::ok && !opt.quiet) {
         fmt::print("ifsim: {} ({}) ok{}: {} steps in {:.3f} s, results in {}\n", opt.scene, label,
                    summary.warnings.empty() ? "" : ", DEGRADED (warnings above, summary.json)",

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <sstream>
 #include <string_view>
 
@@ -14,6 +16,28 @@
 
 namespace ifsim::io {
 namespace {
+
+// Bytes of the file shown in a message: printable ASCII as is, others as \xNN (a message
+// goes into summary.json, which must stay valid UTF-8).
+std::string shown(std::string_view bytes) {
+    std::string out;
+    for (char c : bytes.substr(0, 40)) {
+        const auto u = static_cast<unsigned char>(c);
+        out += (u >= 0x20 && u < 0x7f) ? std::string(1, c) : fmt::format("\\x{:02x}", u);
+    }
+    return out;
+}
+
+// A count written as text (MSH 2.2): digits only, within what the reader takes.
+long long text_count(const std::string& word, const char* what, const auto& fail) {
+    long long v = -1;
+    const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), v);
+    if (ec != std::errc() || end != word.data() + word.size() || v < 0 ||
+        v > std::numeric_limits<int>::max()) {
+        fail(fmt::format("expected {} (a count), found '{}'", what, shown(word)));
+    }
+    return v;
+}
 
 // Reads the binary file: text lines (section headers, counts of MSH 2.2) and binary values.
 class ByteReader {
@@ -77,7 +101,7 @@ public:
         if (w != end) {
             fail(fmt::format("expected '{}' after the section's binary data, found '{}' (a "
                              "count in the file does not match its data)",
-                             end, w.substr(0, 40)));
+                             end, shown(w)));
         }
     }
     [[noreturn]] void fail(const std::string& message) const {
@@ -180,7 +204,8 @@ void elements_41(ByteReader& r, std::string& out) {
 void nodes_22(ByteReader& r, std::string& out) {
     const std::string count = r.word("the number of nodes");
     r.skip_line_break();
-    const long long n = std::stoll(count);
+    const long long n =
+        text_count(count, "the number of nodes", [&](const std::string& m) { r.fail(m); });
     out += count + "\n";
     for (long long k = 0; k < n; ++k) {
         out += fmt::format("{}", r.value<std::int32_t>("a node number"));
@@ -195,7 +220,8 @@ void nodes_22(ByteReader& r, std::string& out) {
 void elements_22(ByteReader& r, std::string& out) {
     const std::string count = r.word("the number of elements");
     r.skip_line_break();
-    const long long n = std::stoll(count);
+    const long long n =
+        text_count(count, "the number of elements", [&](const std::string& m) { r.fail(m); });
     out += count + "\n";
     long long done = 0;
     while (done < n) {
@@ -239,10 +265,11 @@ std::string gmsh_binary_to_ascii(const std::string& bytes, const std::string& fi
     r.word("the file type");
     const std::string size = r.word("the data size");
     if (version != "4.1" && version != "2.2") {
-        r.fail(fmt::format("expected MSH format version 4.1 or 2.2, found '{}'", version));
+        r.fail(fmt::format("expected MSH format version 4.1 or 2.2, found '{}'", shown(version)));
     }
     if (size != "8") {
-        r.fail(fmt::format("expected 8-byte size_t (data size 8), found data size {}", size));
+        r.fail(
+            fmt::format("expected 8-byte size_t (data size 8), found data size {}", shown(size)));
     }
     r.skip_line_break();
     const auto marker = r.value<std::int32_t>("the byte-order marker (int 1)");
@@ -261,7 +288,7 @@ std::string gmsh_binary_to_ascii(const std::string& bytes, const std::string& fi
         const std::string header = r.word("a section header");
         if (header.empty() || header.front() != '$' || header.starts_with("$End")) {
             r.fail(fmt::format("expected a section header such as '$Nodes', found '{}'",
-                               header.substr(0, 40)));
+                               shown(header)));
         }
         const std::string end = "$End" + header.substr(1);
         if (header == "$PhysicalNames") { // text in binary files too

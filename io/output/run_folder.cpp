@@ -13,8 +13,9 @@ namespace fs = std::filesystem;
 
 bool is_run_output(const std::string& name) {
     static const char* const exact[] = {
-        "summary.json", "summary.json.tmp", "history.csv",  "history.csv.partial", "scene.toml",
-        "mesh.pvd",     "fields",           "overview.png", "checkpoint"};
+        "summary.json", "summary.json.tmp",   "history.csv", "history.csv.partial",
+        "scene.toml",   "scene.toml.partial", "mesh.pvd",    "fields",
+        "overview.png", "cycles.png",         "checkpoint",  "checkpoint.partial"};
     if (std::find(std::begin(exact), std::end(exact), name) != std::end(exact)) {
         return true;
     }
@@ -47,7 +48,45 @@ std::string utc_stamp() {
 
 } // namespace
 
-FolderPreparation prepare_run_folder(const fs::path& dir, bool replace) {
+namespace {
+
+// Whether `entry` is one of `keep` or a folder holding one.
+bool holds(const fs::path& entry, const std::vector<fs::path>& keep) {
+    std::error_code ec;
+    const fs::path e = fs::weakly_canonical(entry, ec);
+    for (const fs::path& k : keep) {
+        const fs::path kk = fs::weakly_canonical(k, ec);
+        if (kk == e) {
+            return true;
+        }
+        auto [a, b] = std::mismatch(e.begin(), e.end(), kk.begin(), kk.end());
+        if (a == e.end() && b != kk.end()) {
+            return true; // keep lies inside entry
+        }
+    }
+    return false;
+}
+
+// --replace on fields/: the files a run writes there, then the folder when empty.
+void remove_field_files(const fs::path& folder) {
+    std::error_code ec;
+    for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+        const std::string name = e.path().filename().string();
+        const bool ours = (name.starts_with("mesh-") || name.starts_with("contact-")) &&
+                          (name.ends_with(".vtu") || name.ends_with(".vtu.partial"));
+        if (ours) {
+            fs::remove(e.path(), ec);
+        }
+    }
+    if (fs::is_empty(folder, ec)) {
+        fs::remove(folder, ec);
+    }
+}
+
+} // namespace
+
+FolderPreparation prepare_run_folder(const fs::path& dir, bool replace,
+                                     const std::vector<fs::path>& keep) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec || !fs::is_directory(dir)) {
@@ -58,7 +97,7 @@ FolderPreparation prepare_run_folder(const fs::path& dir, bool replace) {
     FolderPreparation prep;
     for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
         const std::string name = e.path().filename().string();
-        if (is_run_output(name)) {
+        if (is_run_output(name) && !holds(e.path(), keep)) {
             prep.moved.push_back(name);
         }
     }
@@ -68,6 +107,10 @@ FolderPreparation prepare_run_folder(const fs::path& dir, bool replace) {
     }
     if (replace) {
         for (const std::string& name : prep.moved) {
+            if (name == "fields" && fs::is_directory(dir / name)) {
+                remove_field_files(dir / name);
+                continue;
+            }
             fs::remove_all(dir / name, ec);
             if (ec) {
                 throw std::runtime_error(

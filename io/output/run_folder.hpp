@@ -25,6 +25,10 @@ struct FolderPreparation {
 
 // Creates DIR if missing and clears it of an earlier run's outputs (moved aside, or removed
 // when replace). Throws std::runtime_error naming the path when DIR cannot be prepared.
-FolderPreparation prepare_run_folder(const std::filesystem::path& dir, bool replace);
+// Entries of DIR that are (or hold) one of `keep` (the scene file being run, its mesh) stay in
+// place. With replace, fields/ loses only the field files a run writes; a fields/ folder that
+// then still holds other files stays.
+FolderPreparation prepare_run_folder(const std::filesystem::path& dir, bool replace,
+                                     const std::vector<std::filesystem::path>& keep = {});
 
 } // namespace ifsim::io

@@ -56,7 +56,10 @@ void write_summary(const std::filesystem::path& dir, const RunSummary& summary) 
     const auto tmp = dir / summary_temp_name;
     {
         std::ofstream out(tmp, std::ios::trunc);
-        out << summary_json(summary).dump(2) << '\n';
+        // Replace, not throw, on invalid UTF-8 (a message quoting a damaged input file).
+        out << summary_json(summary).dump(2, ' ', false,
+                                          nlohmann::ordered_json::error_handler_t::replace)
+            << '\n';
         out.flush();
         if (!out) {
             throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));

@@ -184,6 +184,9 @@ void write_vtu(const std::filesystem::path& path, const VtuGrid& grid) {
         out << "\n</AppendedData>\n</VTKFile>\n";
         out.flush();
         if (!out) {
+            out.close();
+            std::error_code ignored;
+            std::filesystem::remove(tmp, ignored); // no partial file left behind
             throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
         }
     }
@@ -197,6 +200,13 @@ void write_vtu(const std::filesystem::path& path, const VtuGrid& grid) {
 
 void PvdCollection::add(double time, const std::string& file) {
     entries_.push_back({time, file});
+    const std::size_t n = entries_.size();
+    if ((n & (n - 1)) == 0) {
+        flush();
+    }
+}
+
+void PvdCollection::flush() const {
     std::string xml = "<?xml version=\"1.0\"?>\n"
                       "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
                       "<Collection>\n";

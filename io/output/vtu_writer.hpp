@@ -49,9 +49,11 @@ void write_vtu(const std::filesystem::path& path, const VtuGrid& grid);
 class PvdCollection {
 public:
     explicit PvdCollection(std::filesystem::path path) : path_(std::move(path)) {}
-    // Adds a dataset (file relative to the .pvd's folder) at a time and rewrites the .pvd
-    // atomically, so the collection on disk always lists complete files only.
+    // Adds a dataset (file relative to the .pvd's folder) at a time. The .pvd on disk is
+    // rewritten atomically (so it lists complete files only) by flush(), and by add() when the
+    // count reaches a power of two: a long run's collection costs O(n log n) to keep current.
     void add(double time, const std::string& file);
+    void flush() const;
     const std::filesystem::path& path() const { return path_; }
     std::size_t size() const { return entries_.size(); }
 

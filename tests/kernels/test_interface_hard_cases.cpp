@@ -48,7 +48,8 @@ void expect_defined(const HState& before, const HState& after, const InterfaceSt
     ASSERT_TRUE(std::isfinite(after.eps_n) && std::isfinite(after.eps_p1) &&
                 std::isfinite(after.gamma1));
     if (st.status < -0.5 || st.open > 0.5) {
-        // Failed, or the contact is open (t_N above -open_threshold): the state is kept.
+        // Failed, or open (t_N above -open_threshold; the callers here separate it, t_N >= 0,
+        // or use a threshold below their t_N): the state is kept.
         expect_state_unchanged(before, after);
     } else {
         EXPECT_LE(std::abs(after.y[0] - t_N), tol * std::abs(t_N));

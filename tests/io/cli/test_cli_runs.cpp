@@ -190,6 +190,41 @@ TEST(CliRun, SceneCopyReproducesTheRun) {
     EXPECT_EQ(test::read_text(out / "a" / "history.csv"),
               test::read_text(out / "b" / "history.csv"));
     EXPECT_EQ(summary(out / "a")["scene_copy"], "scene.toml");
+    // Rerun in place, also with --replace: the scene being run is neither moved nor removed.
+    for (const char* replace : {"--replace", "--quiet"}) {
+        const Captured again = run_captured(
+            {"run", (out / "a" / "scene.toml").string(), "--out", (out / "a").string(), replace});
+        ASSERT_EQ(again.code, exit_code::ok) << again.err;
+        EXPECT_EQ(test::read_text(out / "a" / "history.csv"),
+                  test::read_text(out / "b" / "history.csv"));
+    }
+}
+
+// --replace removes only what runs write: a user's file inside fields/ stays; a scene error
+// never removes an earlier run, even with --replace.
+TEST(CliRun, ReplaceRemovesOnlyRunOutputs) {
+    const fs::path out = test::fresh_dir("cli-replace");
+    const std::string scene = test::write_scene(test::valid_scene());
+    ASSERT_EQ(run_captured({"run", scene, "--out", out.string()}).code, exit_code::ok);
+    fs::create_directories(out / "fields");
+    std::ofstream(out / "fields" / "mine.txt") << "keep me";
+    std::ofstream(out / "fields" / "mesh-000001.vtu") << "an old field file";
+    std::string bad = test::valid_scene();
+    bad.replace(bad.find("void_ratio = 0.7"), 16, "void_ratio = -1");
+    EXPECT_EQ(
+        run_captured({"run", test::write_scene(bad), "--out", out.string(), "--replace"}).code,
+        exit_code::bad_input);
+    int previous = 0;
+    for (const auto& e : fs::directory_iterator(out)) {
+        previous += e.path().filename().string().starts_with("previous-") ? 1 : 0;
+    }
+    EXPECT_EQ(previous, 1); // moved aside, not removed
+    fs::create_directories(out / "fields");
+    std::ofstream(out / "fields" / "mine.txt") << "keep me";
+    std::ofstream(out / "fields" / "mesh-000001.vtu") << "an old field file";
+    ASSERT_EQ(run_captured({"run", scene, "--out", out.string(), "--replace"}).code, exit_code::ok);
+    EXPECT_TRUE(fs::exists(out / "fields" / "mine.txt"));
+    EXPECT_FALSE(fs::exists(out / "fields" / "mesh-000001.vtu"));
 }
 
 TEST(CliRun, BadOverrideIsReportedWithTheAssignment) {

@@ -435,6 +435,16 @@ TEST(GmshReader, DamagedBinaryFilesAreErrorsNamingTheFile) {
     const auto at = swapped.find("4.1 1 8\n") + 8;
     swapped.replace(at, 4, std::string("\0\0\0\1", 4));
     expect_mesh_error(swapped, 0, "byte order");
+    // MSH 2.2: a count written as text that is no count, and raw bytes where a section ends
+    // (shown escaped: the message goes into summary.json).
+    std::ifstream in22("tests/io/mesh/data/box2d-binary-22.msh", std::ios::binary);
+    const std::string b22((std::istreambuf_iterator<char>(in22)), std::istreambuf_iterator<char>());
+    const auto nodes = b22.find("$Nodes\n") + 7;
+    const std::string no_count = b22.substr(0, nodes) + "xx" + b22.substr(b22.find('\n', nodes));
+    expect_mesh_error(no_count, 0, "expected the number of nodes (a count), found 'xx'");
+    std::string raw = b22;
+    raw.replace(raw.find("$EndNodes"), 2, "\xff\xfe");
+    expect_mesh_error(raw, 0, "found '\\xff\\xfendNodes'");
 }
 
 } // namespace

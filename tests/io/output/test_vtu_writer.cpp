@@ -171,6 +171,9 @@ TEST(PvdCollection, ListsItsDatasetsInOrderWithTheirTimes) {
     pvd.add(0.0, "fields/mesh-000000.vtu");
     pvd.add(1.165, "fields/mesh-000100.vtu");
     pvd.add(2.0000000000000004, "fields/mesh-000200.vtu");
+    // Rewritten at 1, 2, 4, ... entries and on flush(): the third waits for the flush.
+    EXPECT_EQ(read_file(dir / "mesh.pvd").find("mesh-000200"), std::string::npos);
+    pvd.flush();
     const std::string text = read_file(dir / "mesh.pvd");
     const auto a = text.find("timestep=\"0\"");
     const auto b =
