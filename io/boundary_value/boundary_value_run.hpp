@@ -43,11 +43,6 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
                                                  const std::filesystem::path& dir,
                                                  ProgressMode progress, bool simd);
 
-// What the run builds (summary.json "effects"; "only what the scene asks for" made visible),
-// and the same as one line for the console.
-nlohmann::ordered_json boundary_value_effects(const BoundaryValueScene& scene);
-std::string describe_effects(const nlohmann::ordered_json& effects);
-
 void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& scene,
                                 const BoundaryValueRunOutcome& run, double parse_s);
 

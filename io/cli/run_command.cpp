@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "io/boundary_value/boundary_value_effects.hpp"
 #include "io/boundary_value/boundary_value_run.hpp"
 #include "io/boundary_value/boundary_value_scene.hpp"
 #include "io/cli/exit_codes.hpp"
