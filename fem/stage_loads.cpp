@@ -24,6 +24,18 @@ void StageLoads::check(const Mesh& mesh, const Stage& stage) {
     }
 }
 
+void StageLoads::set_spring_references(const std::vector<std::vector<double>>& references) {
+    if (references.size() != springs_.size()) {
+        throw std::invalid_argument("snapshot of another stage: the number of springs differs");
+    }
+    for (std::size_t k = 0; k < springs_.size(); ++k) {
+        if (references[k].size() != springs_[k].reference.size()) {
+            throw std::invalid_argument("snapshot of another stage: a spring's nodes differ");
+        }
+        springs_[k].reference = references[k];
+    }
+}
+
 void StageLoads::begin(const Mesh& mesh, const Stage& stage, std::span<const double> u,
                        const std::vector<double>& densities) {
     stage_ = stage;

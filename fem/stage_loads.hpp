@@ -5,6 +5,7 @@
 
 #include <map>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,18 @@ public:
 
     const LoadCounters& counters() const { return counters_; }
     const LoadTimers& timers() const { return timers_; }
+
+    // The springs' reference displacements (a spring continues from the stage before: state
+    // a snapshot carries), in the running stage's spring order.
+    std::vector<std::vector<double>> spring_references() const {
+        std::vector<std::vector<double>> out;
+        for (const Spring& sp : springs_) {
+            out.push_back(sp.reference);
+        }
+        return out;
+    }
+    // Throws std::invalid_argument when the snapshot's springs are not the running stage's.
+    void set_spring_references(const std::vector<std::vector<double>>& references);
 
 private:
     struct Spring {

@@ -138,6 +138,7 @@ struct SolverSnapshot {
     long committed_references = 0;
     std::vector<double> material_states; // every set's points, n_state values each
     std::vector<ContactPairSnapshot> contacts;
+    std::vector<std::vector<double>> spring_references; // the running stage's springs
     InitialImbalance imbalance;
 };
 

@@ -21,6 +21,7 @@ SolverSnapshot StaticSolver::snapshot() const {
     for (const auto& c : contacts_.pairs()) {
         s.contacts.push_back(c->snapshot());
     }
+    s.spring_references = loads_.spring_references();
     s.imbalance = imbalance_;
     return s;
 }
@@ -43,6 +44,7 @@ void StaticSolver::restore(const Stage& stage, const SolverSnapshot& s) {
     for (std::size_t k = 0; k < s.contacts.size(); ++k) {
         contacts_.pairs()[k]->restore(s.contacts[k]);
     }
+    loads_.set_spring_references(s.spring_references);
     u_ = s.u;
     du_last_ = s.du_last;
     dt_last_ = s.dt_last;

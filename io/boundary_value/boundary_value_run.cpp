@@ -90,11 +90,18 @@ void warn_initial_imbalance(const fem::StaticSolver& solver, ProgressLine& line,
 
 BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene,
                                                  const std::filesystem::path& dir,
-                                                 ProgressMode progress, bool simd) {
+                                                 ProgressMode progress, bool simd,
+                                                 const BoundaryValueCheckpointing& checkpoints) {
     BoundaryValueRunOutcome out;
     out.nodes = scene.mesh.n_nodes();
     out.elements = scene.mesh.n_elements();
-    HistoryWriter history(dir, boundary_value_history_columns(scene));
+    const BoundaryValueCheckpoint* resume = checkpoints.resume;
+    HistoryWriter history = resume
+                                ? HistoryWriter(dir, boundary_value_history_columns(scene),
+                                                {resume->history_bytes,
+                                                 static_cast<std::size_t>(resume->increment) + 1})
+                                : HistoryWriter(dir, boundary_value_history_columns(scene));
+    auto last_checkpoint = Clock::now();
     ProgressLine line(progress, scene.total_steps(), static_cast<int>(scene.stages.size()));
     std::unique_ptr<fem::StaticSolver> solver;
     std::optional<FieldOutput> fields; // only when the scene asks: no field code runs otherwise
@@ -103,7 +110,7 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
         solver = make_solver(scene, simd);
         out.setup_seconds = since(t0);
         const BoundaryValueProbe probe(scene);
-        {
+        if (!resume) {
             const auto t1 = Clock::now();
             BoundaryValueRow row;
             probe.initial(*solver, row);
@@ -117,11 +124,16 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
             fields->due(0, 0.0, false);
             fields->write(*solver, 0, 0.0);
         }
-        long steps_before = 0;
-        long increment = 0;
+        long steps_before = resume ? resume->steps_before : 0;
+        long increment = resume ? resume->increment : 0;
+        const std::size_t first_stage = resume ? resume->stage_index : 0;
+        if (resume) {
+            out.iterations = resume->iterations;
+            solver->restore(scene.stages[first_stage], resume->snapshot);
+        }
         bool warned = false;
         out.ok = true;
-        for (std::size_t k = 0; k < scene.stages.size() && out.ok; ++k) {
+        for (std::size_t k = first_stage; k < scene.stages.size() && out.ok; ++k) {
             const fem::Stage& stage = scene.stages[k];
             const auto on_increment = [&](const fem::IncrementInfo& info) {
                 const auto t1 = Clock::now();
@@ -145,6 +157,29 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
                 if (fields && fields->due(increment, row.time, stage_end)) {
                     fields->write(*solver, increment, row.time); // timed by FieldOutput
                 }
+                const bool by_count = checkpoints.every > 0 && increment % checkpoints.every == 0;
+                const bool by_time = checkpoints.minutes > 0.0 &&
+                                     since(last_checkpoint) >= 60.0 * checkpoints.minutes;
+                if (by_count || by_time) {
+                    const auto t2 = Clock::now();
+                    BoundaryValueCheckpoint c;
+                    c.scene_text = checkpoints.scene_text;
+                    c.simd = simd;
+                    c.stage_index = k;
+                    c.cursor = info.next;
+                    c.increment = increment;
+                    c.steps_before = steps_before;
+                    c.history_bytes = history.sync();
+                    c.iterations = out.iterations;
+                    c.resumes = resume ? resume->resumes + 1 : 0;
+                    c.every = checkpoints.every;
+                    c.minutes = checkpoints.minutes;
+                    c.snapshot = solver->snapshot();
+                    write_boundary_value_checkpoint(dir, c);
+                    ++out.checkpoints;
+                    last_checkpoint = Clock::now();
+                    out.checkpoint_seconds += since(t2);
+                }
             };
             // A long increment (many Newton iterations, cuts) still moves the line.
             const auto on_iteration = [&](const fem::IncrementInfo& info) {
@@ -156,7 +191,10 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
                                 info.cut_depth > 0 ? fmt::format("  cut x{}", 1 << info.cut_depth)
                                                    : std::string()));
             };
-            const fem::StageResult r = solver->run_stage(stage, on_increment, on_iteration);
+            const fem::StageResult r =
+                resume && k == first_stage
+                    ? solver->resume_stage(stage, resume->cursor, on_increment, on_iteration)
+                    : solver->run_stage(stage, on_increment, on_iteration);
             if (!r.ok) {
                 out.ok = false;
                 out.reason = r.reason;
@@ -190,6 +228,10 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
         out.timers = solver->timers();
         out.equations = solver->dof_map().n_equations;
         out.setup_seconds = std::max(0.0, out.setup_seconds - out.timers.k0);
+    }
+    if (out.ok && (checkpoints.enabled() || resume)) {
+        std::error_code ignored; // the run is complete: nothing to resume
+        std::filesystem::remove(dir / checkpoint_file_name, ignored);
     }
     const auto t2 = Clock::now();
     history.finish();

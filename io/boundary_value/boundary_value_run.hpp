@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fem/static_solver.hpp"
+#include "io/boundary_value/boundary_value_checkpoint.hpp"
 #include "io/boundary_value/boundary_value_scene.hpp"
 #include "io/output/progress.hpp"
 #include "io/output/summary_writer.hpp"
@@ -35,13 +36,25 @@ struct BoundaryValueRunOutcome {
     std::vector<std::string> field_collections; // .pvd files relative to DIR
     std::vector<std::string> field_materials;   // names of the cell array `material`
     std::vector<double> field_times_unreached;  // named times after the run's last increment
+    long checkpoints = 0;                       // checkpoints written by this run
+    double checkpoint_seconds = 0.0;
+};
+
+// Checkpoints of a run (--checkpoint-every, --checkpoint-minutes) and a run resumed from one.
+struct BoundaryValueCheckpointing {
+    long every = 0;         // increments between checkpoints (0: none by count)
+    double minutes = 0.0;   // wall-clock minutes between checkpoints (0: none by time)
+    std::string scene_text; // DIR/scene.toml, stored in the checkpoint
+    const BoundaryValueCheckpoint* resume = nullptr; // continue from this one
+    bool enabled() const { return every > 0 || minutes > 0.0; }
 };
 
 // Writes DIR/history.csv. Throws std::runtime_error only when history.csv cannot be written
 // at all.
-BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene,
-                                                 const std::filesystem::path& dir,
-                                                 ProgressMode progress, bool simd);
+BoundaryValueRunOutcome
+run_boundary_value_scene(const BoundaryValueScene& scene, const std::filesystem::path& dir,
+                         ProgressMode progress, bool simd,
+                         const BoundaryValueCheckpointing& checkpoints = {});
 
 void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& scene,
                                 const BoundaryValueRunOutcome& run, double parse_s);

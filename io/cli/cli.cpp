@@ -1,6 +1,7 @@
 #include "io/cli/cli.hpp"
 
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <stdexcept>
 
@@ -51,6 +52,21 @@ as interface model; --formulation coulomb times batched Coulomb friction (no con
 
 } // namespace
 
+namespace {
+
+// --checkpoint-every and --checkpoint-minutes, the same for `run` and `resume`.
+void add_checkpoint_options(CLI::App* cmd, RunOptions& opt) {
+    cmd->add_option("--checkpoint-every", opt.checkpoint_every,
+                    "Boundary-value scenes: write DIR/checkpoint every N increments (continue a "
+                    "killed run with `ifsim resume DIR`)")
+        ->check(CLI::Range(1L, 1'000'000'000L));
+    cmd->add_option("--checkpoint-minutes", opt.checkpoint_minutes,
+                    "Boundary-value scenes: write DIR/checkpoint every M minutes")
+        ->check(CLI::PositiveNumber);
+}
+
+} // namespace
+
 int run_cli(int argc, const char* const* argv) {
     CLI::App app{fmt::format("ifsim {} ({}): continuum soil models as interface models "
                              "(Staubach, Machacek, Wichtmann 2022)",
@@ -81,6 +97,7 @@ int run_cli(int argc, const char* const* argv) {
         ->add_option("--fields-every", run.fields_every,
                      "Boundary-value scenes: write VTU fields every N increments")
         ->check(CLI::Range(1L, 1'000'000'000L));
+    add_checkpoint_options(run_cmd, run);
     run_cmd->add_flag("--scalar", run.scalar,
                       "Use the scalar kernel path instead of SIMD (same results to round-off)");
     auto* progress_flag = run_cmd->add_flag(
@@ -88,6 +105,24 @@ int run_cli(int argc, const char* const* argv) {
     run_cmd->add_flag("--quiet,-q", run.quiet, "No progress line and no result line")
         ->excludes(progress_flag);
     run_cmd->footer(run_footer);
+
+    RunOptions resume;
+    resume.resume = true;
+    std::string resume_dir;
+    bool resume_progress = false;
+    CLI::App* resume_cmd = app.add_subcommand(
+        "resume", "Continue a killed or stopped boundary-value run from DIR/checkpoint");
+    resume_cmd->add_option("dir", resume_dir, "The run's output directory")->required();
+    resume_cmd->add_option("--threads", resume.threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(1, 4096));
+    add_checkpoint_options(resume_cmd, resume);
+    auto* resume_progress_flag = resume_cmd->add_flag(
+        "--progress", resume_progress, "Show the progress line even when stderr is not a terminal");
+    resume_cmd->add_flag("--quiet,-q", resume.quiet, "No progress line and no result line")
+        ->excludes(resume_progress_flag);
+    resume_cmd->footer("The run goes on from its last checkpoint with the scene DIR/scene.toml "
+                       "and the kernel path it started with; rows after the checkpoint are "
+                       "written again, so history.csv ends as the uninterrupted run's.");
 
     KernelBenchOptions bench;
     CLI::App* bench_cmd = app.add_subcommand(
@@ -141,6 +176,14 @@ int run_cli(int argc, const char* const* argv) {
         return code == 0 ? exit_code::ok : exit_code::bad_input;
     }
 
+    if (resume_cmd->parsed()) {
+        resume.out = resume_dir;
+        resume.scene = (std::filesystem::path(resume_dir) / "scene.toml").string();
+        if (resume_progress) {
+            resume.progress = ProgressMode::always;
+        }
+        return run_command(resume);
+    }
     if (run_cmd->parsed()) {
         if (progress) {
             run.progress = ProgressMode::always;

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -37,8 +38,8 @@ namespace fs = std::filesystem;
 
 // DIR/scene.toml: the scene as run (overrides applied, a mesh file by its absolute path), so
 // the folder says how to reproduce it.
-void write_scene_copy(const fs::path& dir, toml::table table, const RunOptions& opt,
-                      const std::string& mesh_path) {
+std::string write_scene_copy(const fs::path& dir, toml::table table, const RunOptions& opt,
+                             const std::string& mesh_path) {
     if (!mesh_path.empty()) {
         if (toml::table* mesh = table["mesh"].as_table()) {
             mesh->insert_or_assign("file", mesh_path);
@@ -50,15 +51,25 @@ void write_scene_copy(const fs::path& dir, toml::table table, const RunOptions& 
         header += fmt::format("#   --set {}\n", set);
     }
     header += "# (overrides applied below; rerun: ifsim run scene.toml --out DIR)\n\n";
+    std::ostringstream text;
+    text << header << table << "\n";
     const fs::path tmp = dir / "scene.toml.partial";
     {
         std::ofstream out(tmp, std::ios::trunc);
-        out << header << table << "\n";
+        out << text.str();
         if (!out) {
             throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
         }
     }
     fs::rename(tmp, dir / "scene.toml");
+    return text.str();
+}
+
+std::string read_text_file(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
 }
 
 // The --set assignment an error key comes from, if any (the key itself or a key below it).
@@ -137,7 +148,8 @@ struct Scene {
 // Runs the scene's kind and fills the summary with its results. Throws std::runtime_error when
 // history.csv cannot be written at all.
 void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double parse_s,
-              RunSummary& summary, std::string& label, long& steps) {
+              const BoundaryValueCheckpointing& checkpoints, RunSummary& summary,
+              std::string& label, long& steps) {
     const ProgressMode progress = opt.quiet ? ProgressMode::never : opt.progress;
     if (scene.kind == "boundary-value") {
         BoundaryValueScene& s = scene.boundary_value;
@@ -149,8 +161,20 @@ void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double p
             fmt::print(stderr, "ifsim: {}: {}\n", opt.scene,
                        describe_effects(boundary_value_effects(s)));
         }
-        const BoundaryValueRunOutcome run = run_boundary_value_scene(s, dir, progress, !opt.scalar);
+        const bool simd = checkpoints.resume ? checkpoints.resume->simd : !opt.scalar;
+        const BoundaryValueRunOutcome run =
+            run_boundary_value_scene(s, dir, progress, simd, checkpoints);
         add_boundary_value_results(summary, s, run, parse_s);
+        if (checkpoints.enabled()) {
+            summary.details["checkpoints"] = {{"every", checkpoints.every},
+                                              {"minutes", checkpoints.minutes},
+                                              {"written", run.checkpoints},
+                                              {"seconds", run.checkpoint_seconds}};
+        }
+        if (checkpoints.resume) {
+            summary.details["resumed"] = {{"from_increment", checkpoints.resume->increment},
+                                          {"times", checkpoints.resume->resumes + 1}};
+        }
         label = fmt::format("{}D FE", s.mesh_spec.dimension);
         if (s.contacts.size() == 1) {
             label += ", " + s.contacts.front().formulation.name();
@@ -192,6 +216,34 @@ int run_command(const RunOptions& opt) {
     summary.details["path"] = opt.scalar ? "scalar" : "simd";
     summary.details["lanes"] = opt.scalar ? std::size_t{1} : simd::lanes;
 
+    // Resume: the checkpoint and the scene copy of DIR, checked against each other before
+    // anything in DIR changes.
+    std::optional<BoundaryValueCheckpoint> checkpoint;
+    std::string scene_text;
+    if (opt.resume) {
+        try {
+            checkpoint = read_boundary_value_checkpoint(dir);
+        } catch (const std::exception& e) {
+            fmt::print(stderr, "ifsim: error: cannot resume: {}\n", e.what());
+            return exit_code::bad_input;
+        }
+        scene_text = read_text_file(dir / "scene.toml");
+        if (scene_text != checkpoint->scene_text) {
+            fmt::print(stderr,
+                       "ifsim: error: cannot resume: {} is not the scene the checkpoint was "
+                       "written for (changed since the run started)\n",
+                       (dir / "scene.toml").string());
+            return exit_code::bad_input;
+        }
+    }
+    if ((opt.checkpoint_every > 0 || opt.checkpoint_minutes > 0.0) &&
+        (opt.fields || opt.fields_every > 0)) {
+        fmt::print(stderr, "ifsim: error: checkpoints together with field output are not "
+                           "supported yet (a resumed run would not continue the .pvd "
+                           "collections); run with one of them\n");
+        return exit_code::bad_input;
+    }
+
     // Parse: the scene, the overrides, the kind's schema.
     Scene scene;
     toml::table table;
@@ -232,11 +284,14 @@ int run_command(const RunOptions& opt) {
     // applies to runs that start).
     FolderPreparation earlier;
     try {
+        // Resuming: DIR is the run being continued, nothing moves.
         std::vector<fs::path> keep = {opt.scene};
         if (!mesh_path.empty()) {
             keep.emplace_back(mesh_path);
         }
-        earlier = prepare_run_folder(dir, opt.replace && scene_error.empty(), keep);
+        if (!opt.resume) {
+            earlier = prepare_run_folder(dir, opt.replace && scene_error.empty(), keep);
+        }
     } catch (const std::exception& e) {
         fmt::print(stderr, "ifsim: error: {}\n", e.what());
         return exit_code::io_error;
@@ -259,29 +314,43 @@ int run_command(const RunOptions& opt) {
         return write_summary_or_report(dir, summary, exit_code::bad_input);
     }
     const double parse_s = since(t_start);
-    try {
-        write_scene_copy(dir, table, opt, mesh_path);
-    } catch (const std::exception& e) {
-        fmt::print(stderr, "ifsim: error: {}\n", e.what());
-        return exit_code::io_error;
+    if (!opt.resume) {
+        try {
+            scene_text = write_scene_copy(dir, table, opt, mesh_path);
+        } catch (const std::exception& e) {
+            fmt::print(stderr, "ifsim: error: {}\n", e.what());
+            return exit_code::io_error;
+        }
     }
     summary.details["scene_copy"] = "scene.toml";
-    if ((opt.fields || opt.fields_every > 0) && scene.kind != "boundary-value") {
-        const std::string message =
-            fmt::format("--fields and --fields-every apply to boundary-value scenes only; {} is "
-                        "a scene of kind \"{}\"",
-                        opt.scene, scene.kind);
+    // Options of boundary-value runs given for another kind: a bad command line.
+    const bool fields = opt.fields || opt.fields_every > 0;
+    const bool checkpoints_asked =
+        opt.checkpoint_every > 0 || opt.checkpoint_minutes > 0.0 || opt.resume;
+    if ((fields || checkpoints_asked) && scene.kind != "boundary-value") {
+        const std::string message = fmt::format(
+            "{} apply to boundary-value scenes only (so far); {} is a scene of kind \"{}\"",
+            fields ? "--fields and --fields-every" : "checkpoints and resume", opt.scene,
+            scene.kind);
         fmt::print(stderr, "ifsim: error: {}\n", message);
         summary.ok = false;
         summary.reason = message;
         summary.wall_s = since(t_start);
         return write_summary_or_report(dir, summary, exit_code::bad_input);
     }
-
+    BoundaryValueCheckpointing checkpoints;
+    checkpoints.every = opt.checkpoint_every;
+    checkpoints.minutes = opt.checkpoint_minutes;
+    checkpoints.scene_text = scene_text;
+    checkpoints.resume = checkpoint ? &*checkpoint : nullptr;
+    if (checkpoint && !checkpoints.enabled()) { // a resumed run keeps its interval
+        checkpoints.every = checkpoint->every;
+        checkpoints.minutes = checkpoint->minutes;
+    }
     std::string label;
     long steps = 0;
     try {
-        run_kind(scene, opt, dir, parse_s, summary, label, steps);
+        run_kind(scene, opt, dir, parse_s, checkpoints, summary, label, steps);
     } catch (const std::exception& e) {
         fmt::print(stderr, "ifsim: error: {}\n", e.what());
         summary.ok = false;

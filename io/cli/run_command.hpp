@@ -21,6 +21,9 @@ struct RunOptions {
     bool replace = false;  // remove an earlier run's outputs in DIR instead of moving them aside
     bool fields = false;   // boundary-value: fields at the end of every stage
     long fields_every = 0; // boundary-value: fields every N increments
+    long checkpoint_every = 0;     // boundary-value: a checkpoint every N increments
+    double checkpoint_minutes = 0; // boundary-value: a checkpoint every M minutes
+    bool resume = false;           // `ifsim resume DIR`: scene = DIR/scene.toml, out = DIR
 };
 
 int run_command(const RunOptions& options);

@@ -1,7 +1,10 @@
 #include "io/output/history_writer.hpp"
 
 #include <iterator>
+#include <system_error>
+
 #include <stdexcept>
+#include <unistd.h>
 
 namespace ifsim::io {
 
@@ -17,6 +20,31 @@ HistoryWriter::HistoryWriter(const std::filesystem::path& dir, std::vector<std::
         header += (header.empty() ? "" : ",") + c;
     }
     fmt::print(file_, "{}\n", header);
+}
+
+HistoryWriter::HistoryWriter(const std::filesystem::path& dir, std::vector<std::string> columns,
+                             ResumeAt at)
+    : dir_(dir), columns_(std::move(columns)), rows_(at.rows) {
+    const auto path = dir_ / partial_name;
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec || static_cast<long long>(size) < at.bytes) {
+        throw std::runtime_error(fmt::format(
+            "cannot resume {}: {} (the checkpoint saw {} bytes)", path.string(),
+            ec ? ec.message() : fmt::format("the file has only {} bytes", size), at.bytes));
+    }
+    std::filesystem::resize_file(path, static_cast<std::uintmax_t>(at.bytes), ec);
+    file_ = ec ? nullptr : std::fopen(path.c_str(), "a");
+    if (file_ == nullptr) {
+        throw std::runtime_error(fmt::format("cannot resume {}", path.string()));
+    }
+}
+
+long long HistoryWriter::sync() {
+    if (file_ == nullptr || std::fflush(file_) != 0 || ::fsync(::fileno(file_)) != 0) {
+        throw std::runtime_error(fmt::format("cannot write {}", (dir_ / partial_name).string()));
+    }
+    return static_cast<long long>(std::ftell(file_));
 }
 
 HistoryWriter::~HistoryWriter() {

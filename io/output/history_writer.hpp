@@ -23,6 +23,19 @@ public:
     HistoryWriter(const HistoryWriter&) = delete;
     HistoryWriter& operator=(const HistoryWriter&) = delete;
 
+    // Continues the history.csv.partial of a killed run from a checkpoint: the file is cut
+    // back to `bytes` (what the checkpoint saw; rows written after it are dropped) holding
+    // `rows` rows. Throws std::runtime_error naming the file when it is missing or shorter.
+    struct ResumeAt {
+        long long bytes = 0;
+        std::size_t rows = 0;
+    };
+    HistoryWriter(const std::filesystem::path& dir, std::vector<std::string> columns, ResumeAt at);
+
+    // Flushes the rows so far to disk (fsync) and returns the file's length in bytes: what a
+    // checkpoint records.
+    long long sync();
+
     void integer(long long value);
     void real(double value);
     // An empty field: a quantity the run does not have (documented per kind).

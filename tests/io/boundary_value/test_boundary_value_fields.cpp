@@ -149,3 +149,38 @@ TEST(Effects, SummaryListsWhatTheRunBuilt) {
 
 } // namespace
 } // namespace ifsim::io
+
+namespace ifsim::io {
+namespace {
+
+// ifsim resume refuses what it cannot continue and changes nothing: no checkpoint (a finished
+// run removed it), a damaged one, a scene of another kind; the killed-and-resumed runs
+// themselves are checked byte for byte by scripts/check_resume.py (Checkpoint.* tests).
+TEST(Resume, RefusesWhatItCannotContinueAndChangesNothing) {
+    const fs::path dir = test::fresh_dir("resume-refused");
+    const auto r = run(dir, {"--checkpoint-every", "5"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "checkpoint")); // complete: nothing to resume
+    EXPECT_EQ(test::summary(dir)["checkpoints"]["written"].get<long>(), 4);
+    const std::string history = test::read_text(dir / "history.csv");
+    auto again = test::run_cli_captured({"resume", dir.string()});
+    EXPECT_EQ(again.code, 2);
+    EXPECT_NE(again.err.find("cannot open the checkpoint"), std::string::npos) << again.err;
+    std::ofstream(dir / "checkpoint") << "not a checkpoint";
+    again = test::run_cli_captured({"resume", dir.string()});
+    EXPECT_EQ(again.code, 2);
+    EXPECT_NE(again.err.find("not an ifsim checkpoint"), std::string::npos) << again.err;
+    EXPECT_EQ(test::read_text(dir / "history.csv"), history);
+    const auto element =
+        test::run_cli_captured({"run", "scenes/element-hypo-oedometer.toml", "--out",
+                                (dir / "el").string(), "--checkpoint-every", "5"});
+    EXPECT_EQ(element.code, 2);
+    EXPECT_NE(element.err.find("boundary-value scenes only"), std::string::npos) << element.err;
+    const auto both = test::run_cli_captured(
+        {"run", box, "--out", (dir / "both").string(), "--checkpoint-every", "5", "--fields"});
+    EXPECT_EQ(both.code, 2);
+    EXPECT_NE(both.err.find("not supported yet"), std::string::npos) << both.err;
+}
+
+} // namespace
+} // namespace ifsim::io

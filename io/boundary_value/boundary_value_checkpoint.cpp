@@ -1,0 +1,124 @@
+#include "io/boundary_value/boundary_value_checkpoint.hpp"
+
+#include <fmt/format.h>
+
+#include "io/output/checkpoint_file.hpp"
+
+namespace ifsim::io {
+namespace {
+
+std::vector<std::int64_t> ints(std::initializer_list<std::int64_t> v) {
+    return std::vector<std::int64_t>(v);
+}
+
+} // namespace
+
+void write_boundary_value_checkpoint(const std::filesystem::path& dir,
+                                     const BoundaryValueCheckpoint& c) {
+    CheckpointWriter w;
+    const fem::SolverSnapshot& s = c.snapshot;
+    w.put("kind", std::string("boundary-value"));
+    w.put("scene", c.scene_text);
+    w.put("position", ints({c.simd ? 1 : 0, static_cast<std::int64_t>(c.stage_index), c.cursor.step,
+                            c.cursor.depth, c.cursor.streak, c.increment, c.steps_before,
+                            c.history_bytes, c.resumes, s.stage_count, s.committed_references}));
+    w.put("cursor_t", std::vector<double>{c.cursor.t_a});
+    w.put("interval", std::vector<double>{double(c.every), c.minutes});
+    w.put("iterations", std::vector<std::int64_t>(c.iterations.begin(), c.iterations.end()));
+    w.put("u", s.u);
+    w.put("u_stage_start", s.u_stage_start);
+    w.put("du_last", s.du_last);
+    w.put("f_int", s.f_int_committed);
+    w.put("f_ext", s.f_ext_committed);
+    w.put("scalars", std::vector<double>{s.dt_last, s.reference_sum});
+    w.put("materials", s.material_states);
+    w.put("imbalance", std::vector<double>{s.imbalance.evaluated ? 1.0 : 0.0, s.imbalance.relative,
+                                           double(s.imbalance.node), double(s.imbalance.direction),
+                                           s.imbalance.force});
+    w.put("springs", ints({static_cast<std::int64_t>(s.spring_references.size())}));
+    for (std::size_t k = 0; k < s.spring_references.size(); ++k) {
+        w.put(fmt::format("spring{}.reference", k), s.spring_references[k]);
+    }
+    w.put("pairs", ints({static_cast<std::int64_t>(s.contacts.size())}));
+    for (std::size_t k = 0; k < s.contacts.size(); ++k) {
+        const fem::ContactPairSnapshot& p = s.contacts[k];
+        const std::string key = fmt::format("pair{}.", k);
+        w.put(key + "started", ints({p.started ? 1 : 0}));
+        w.put(key + "committed", p.committed);
+        w.put(key + "gap_offset", p.gap_offset);
+        w.put(key + "relax", p.relax);
+        w.put(key + "calm", p.calm);
+    }
+    w.write(dir / checkpoint_file_name);
+}
+
+BoundaryValueCheckpoint read_boundary_value_checkpoint(const std::filesystem::path& dir) {
+    const CheckpointReader r(dir / checkpoint_file_name);
+    if (r.text("kind") != "boundary-value") {
+        throw CheckpointError(fmt::format("{}: a checkpoint of a {} run; resume reads "
+                                          "boundary-value runs",
+                                          (dir / checkpoint_file_name).string(), r.text("kind")));
+    }
+    BoundaryValueCheckpoint c;
+    c.scene_text = r.text("scene");
+    const auto pos = r.integers("position");
+    if (pos.size() != 11) {
+        throw CheckpointError(
+            fmt::format("{}: malformed position section", (dir / checkpoint_file_name).string()));
+    }
+    c.simd = pos[0] != 0;
+    c.stage_index = static_cast<std::size_t>(pos[1]);
+    c.cursor.step = static_cast<int>(pos[2]);
+    c.cursor.depth = static_cast<int>(pos[3]);
+    c.cursor.streak = static_cast<int>(pos[4]);
+    c.increment = pos[5];
+    c.steps_before = pos[6];
+    c.history_bytes = pos[7];
+    c.resumes = pos[8];
+    fem::SolverSnapshot& s = c.snapshot;
+    s.stage_count = static_cast<int>(pos[9]);
+    s.committed_references = pos[10];
+    c.cursor.t_a = r.real("cursor_t");
+    const auto interval = r.doubles("interval");
+    if (interval.size() == 2) {
+        c.every = static_cast<long>(interval[0]);
+        c.minutes = interval[1];
+    }
+    for (std::int64_t v : r.integers("iterations")) {
+        c.iterations.push_back(static_cast<int>(v));
+    }
+    s.u = r.doubles("u");
+    s.u_stage_start = r.doubles("u_stage_start");
+    s.du_last = r.doubles("du_last");
+    s.f_int_committed = r.doubles("f_int");
+    s.f_ext_committed = r.doubles("f_ext");
+    const auto scalars = r.doubles("scalars");
+    const auto imb = r.doubles("imbalance");
+    if (scalars.size() != 2 || imb.size() != 5) {
+        throw CheckpointError(
+            fmt::format("{}: malformed solver section", (dir / checkpoint_file_name).string()));
+    }
+    s.dt_last = scalars[0];
+    s.reference_sum = scalars[1];
+    s.material_states = r.doubles("materials");
+    s.imbalance = {imb[0] != 0.0, imb[1], static_cast<int>(imb[2]), static_cast<int>(imb[3]),
+                   imb[4]};
+    const auto springs = r.integer("springs");
+    for (std::int64_t k = 0; k < springs; ++k) {
+        s.spring_references.push_back(r.doubles(fmt::format("spring{}.reference", k)));
+    }
+    const auto pairs = r.integer("pairs");
+    for (std::int64_t k = 0; k < pairs; ++k) {
+        const std::string key = fmt::format("pair{}.", k);
+        fem::ContactPairSnapshot p;
+        p.started = r.integer(key + "started") != 0;
+        p.committed = r.doubles(key + "committed");
+        p.gap_offset = r.doubles(key + "gap_offset");
+        p.relax = r.doubles(key + "relax");
+        p.calm = r.doubles(key + "calm");
+        s.contacts.push_back(std::move(p));
+    }
+    return c;
+}
+
+} // namespace ifsim::io
