@@ -19,6 +19,7 @@
 #include "io/element_test/element_test_scene.hpp"
 #include "io/interface_test/interface_test_run.hpp"
 #include "io/interface_test/interface_test_scene.hpp"
+#include "io/output/atomic_file.hpp"
 #include "io/output/column_units.hpp"
 #include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
@@ -53,15 +54,7 @@ std::string write_scene_copy(const fs::path& dir, toml::table table, const RunOp
     header += "# (overrides applied below; rerun: ifsim run scene.toml --out DIR)\n\n";
     std::ostringstream text;
     text << header << table << "\n";
-    const fs::path tmp = dir / "scene.toml.partial";
-    {
-        std::ofstream out(tmp, std::ios::trunc);
-        out << text.str();
-        if (!out) {
-            throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
-        }
-    }
-    fs::rename(tmp, dir / "scene.toml");
+    write_file_atomically(dir / "scene.toml", text.str());
     return text.str();
 }
 

@@ -1,11 +1,10 @@
 #include "io/output/checkpoint_file.hpp"
 
+#include "io/output/atomic_file.hpp"
+
 #include <cstring>
 #include <fstream>
 #include <sstream>
-
-#include <fcntl.h>
-#include <unistd.h>
 
 #include <fmt/format.h>
 #include <zlib.h>
@@ -38,17 +37,6 @@ std::uint32_t crc(const std::string& s) {
         crc32(0L, reinterpret_cast<const Bytef*>(s.data()), static_cast<uInt>(s.size())));
 }
 
-// fsync of a file or folder by path; false on failure.
-bool sync_path(const std::filesystem::path& p, bool directory) {
-    const int fd = ::open(p.c_str(), directory ? O_RDONLY | O_DIRECTORY : O_RDONLY);
-    if (fd < 0) {
-        return false;
-    }
-    const bool ok = ::fsync(fd) == 0;
-    ::close(fd);
-    return ok;
-}
-
 } // namespace
 
 void CheckpointWriter::put(const std::string& name, std::span<const double> values) {
@@ -68,27 +56,7 @@ void CheckpointWriter::write(const std::filesystem::path& path) const {
     append(header, CheckpointReader::format_version);
     append(header, static_cast<std::uint64_t>(payload_.size()));
     append(header, crc(payload_));
-    std::filesystem::path tmp = path;
-    tmp += ".partial";
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        out << header << payload_;
-        out.flush();
-        if (!out) {
-            throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
-        }
-    }
-    if (!sync_path(tmp, false)) {
-        throw std::runtime_error(fmt::format("cannot flush {} to disk", tmp.string()));
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        throw std::runtime_error(
-            fmt::format("cannot rename {} to {}: {}", tmp.string(), path.string(), ec.message()));
-    }
-    const auto folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-    sync_path(folder, true); // the rename itself; best effort where folders cannot be synced
+    write_file_atomically(path, header, payload_, true);
 }
 
 CheckpointReader::CheckpointReader(const std::filesystem::path& path) : file_(path.string()) {

@@ -1,5 +1,7 @@
 #include "io/output/vtu_writer.hpp"
 
+#include "io/output/atomic_file.hpp"
+
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
@@ -175,27 +177,7 @@ void write_vtu(const std::filesystem::path& path, const VtuGrid& grid) {
     xml += "</Cells>\n</Piece>\n</UnstructuredGrid>\n";
     xml += "<AppendedData encoding=\"base64\">\n_";
 
-    std::filesystem::path tmp = path;
-    tmp += ".partial";
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        out << xml;
-        out.write(appended.data().data(), static_cast<std::streamsize>(appended.data().size()));
-        out << "\n</AppendedData>\n</VTKFile>\n";
-        out.flush();
-        if (!out) {
-            out.close();
-            std::error_code ignored;
-            std::filesystem::remove(tmp, ignored); // no partial file left behind
-            throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        throw std::runtime_error(
-            fmt::format("cannot rename {} to {}: {}", tmp.string(), file, ec.message()));
-    }
+    write_file_atomically(path, xml, appended.data() + "\n</AppendedData>\n</VTKFile>\n");
 }
 
 void PvdCollection::add(double time, const std::string& file) {
@@ -216,22 +198,7 @@ void PvdCollection::flush() const {
                            xml_escape(e.file));
     }
     xml += "</Collection>\n</VTKFile>\n";
-    std::filesystem::path tmp = path_;
-    tmp += ".partial";
-    {
-        std::ofstream out(tmp, std::ios::trunc);
-        out << xml;
-        out.flush();
-        if (!out) {
-            throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path_, ec);
-    if (ec) {
-        throw std::runtime_error(
-            fmt::format("cannot rename {} to {}: {}", tmp.string(), path_.string(), ec.message()));
-    }
+    write_file_atomically(path_, xml);
 }
 
 } // namespace ifsim::io

@@ -162,7 +162,13 @@ TEST(Resume, RefusesWhatItCannotContinueAndChangesNothing) {
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_FALSE(fs::exists(dir / "checkpoint")); // complete: nothing to resume
     EXPECT_EQ(test::summary(dir)["checkpoints"]["written"].get<long>(), 4);
+    // By time (a tiny interval: after every increment that took longer): the same history.
+    const fs::path timed = test::fresh_dir("resume-timed");
+    ASSERT_EQ(run(timed, {"--checkpoint-minutes", "1e-7"}).code, 0);
+    EXPECT_GT(test::summary(timed)["checkpoints"]["written"].get<long>(), 0);
+    EXPECT_FALSE(fs::exists(timed / "checkpoint"));
     const std::string history = test::read_text(dir / "history.csv");
+    EXPECT_EQ(test::read_text(timed / "history.csv"), history);
     auto again = test::run_cli_captured({"resume", dir.string()});
     EXPECT_EQ(again.code, 2);
     EXPECT_NE(again.err.find("cannot open the checkpoint"), std::string::npos) << again.err;
