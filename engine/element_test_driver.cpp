@@ -112,36 +112,44 @@ StepOutcome<M> solve_step(PointEvaluator<M>& drv, const ElementTestSettings& set
 }
 
 template <class M>
-ElementTestResult run_typed(const typename M::Params& params, const std::vector<double>& initial,
-                            const std::vector<ElementStage>& stages,
-                            const ElementTestSettings& settings,
-                            const std::function<void(const ElementRow&)>& on_row) {
+ElementTestResult
+run_typed(const typename M::Params& params, const std::vector<double>& initial,
+          const std::vector<ElementStage>& stages, const ElementTestSettings& settings,
+          const std::function<void(const ElementRow&)>& on_row, const ElementTestPosition* resume,
+          const std::function<void(const ElementTestPosition&)>& on_step) {
     constexpr int N = M::n_state;
     ElementTestResult result;
-    if (static_cast<int>(initial.size()) != N) {
-        throw std::invalid_argument(fmt::format("initial state of model {} needs {} values, got {}",
-                                                M::name, N, initial.size()));
+    const std::vector<double>& start = resume ? resume->state : initial;
+    if (static_cast<int>(start.size()) != N) {
+        throw std::invalid_argument(fmt::format("{} state of model {} needs {} values, got {}",
+                                                resume ? "resumed" : "initial", M::name, N,
+                                                start.size()));
     }
     const auto t_start = Clock::now();
     PointCounters pc;
     PointEvaluator<M> drv(params, settings.update, pc);
     StateVec<double, N> y{};
     for (int k = 0; k < N; ++k) {
-        y[k] = initial[k];
+        y[k] = start[k];
     }
-    Sym<double> strain{};
+    Sym<double> strain = resume ? resume->strain : Sym<double>{};
     ElementRow row;
-    row.state.assign(initial.begin(), initial.end());
-    on_row(row);
+    if (!resume) {
+        row.state.assign(initial.begin(), initial.end());
+        on_row(row);
+    }
 
     // Largest number of halvings of one step before the run gives up.
     constexpr int max_cuts = 6;
-    int step = 0;
-    for (std::size_t s = 0; s < stages.size(); ++s) {
+    int step = resume ? resume->step : 0;
+    ElementTestPosition pos;
+    const std::size_t first_stage = resume ? static_cast<std::size_t>(resume->stage) : 0;
+    for (std::size_t s = first_stage; s < stages.size(); ++s) {
         const ElementStage& st = stages[s];
-        const Sym<double> stress_start = stress_of(y);
-        Sym<double> guess{};
-        for (int k = 1; k <= st.steps; ++k) {
+        const bool resumed_stage = resume && s == first_stage;
+        const Sym<double> stress_start = resumed_stage ? resume->stress_start : stress_of(y);
+        Sym<double> guess = resumed_stage ? resume->guess : Sym<double>{};
+        for (int k = resumed_stage ? resume->step_in_stage + 1 : 1; k <= st.steps; ++k) {
             Sym<double> deps_known{};
             Sym<double> target{};
             for (int j = 0; j < 6; ++j) {
@@ -205,6 +213,10 @@ ElementTestResult run_typed(const typename M::Params& params, const std::vector<
             row.strain = strain;
             row.state.assign(y.begin(), y.end());
             on_row(row);
+            if (on_step) {
+                pos = {static_cast<int>(s), k, step, row.state, strain, guess, stress_start};
+                on_step(pos);
+            }
         }
     }
     finish(result, pc, t_start);
@@ -217,11 +229,13 @@ ElementTestResult run_element_test(const MaterialChoice& material,
                                    const std::vector<double>& initial_state,
                                    const std::vector<ElementStage>& stages,
                                    const ElementTestSettings& settings,
-                                   const std::function<void(const ElementRow&)>& on_row) {
+                                   const std::function<void(const ElementRow&)>& on_row,
+                                   const ElementTestPosition* resume,
+                                   const std::function<void(const ElementTestPosition&)>& on_step) {
     return std::visit(
         [&](const auto& params) {
             using M = typename model_of<std::decay_t<decltype(params)>>::type;
-            return run_typed<M>(params, initial_state, stages, settings, on_row);
+            return run_typed<M>(params, initial_state, stages, settings, on_row, resume, on_step);
         },
         material);
 }

@@ -56,13 +56,28 @@ struct ElementTestResult {
     double driver_seconds = 0.0;       // Newton bookkeeping around them
 };
 
-// Runs all stages from the initial state. on_row is called for step 0 and after every step;
-// a failure stops the run with result.ok = false and a reason naming step and stage. Throws
-// std::invalid_argument for an initial state of the wrong length.
-ElementTestResult run_element_test(const MaterialChoice& material,
-                                   const std::vector<double>& initial_state,
-                                   const std::vector<ElementStage>& stages,
-                                   const ElementTestSettings& settings,
-                                   const std::function<void(const ElementRow&)>& on_row);
+// Where a run stands after a committed step: all a resumed run needs to continue bit for bit
+// (checkpoint and resume, docs/scenes.md).
+struct ElementTestPosition {
+    int stage = 0;         // 0-based stage of the last committed step
+    int step_in_stage = 0; // steps of that stage done
+    int step = 0;          // steps done in all
+    std::vector<double> state;
+    Sym<double> strain{};
+    Sym<double> guess{};        // the next step's first guess of the unknown strains
+    Sym<double> stress_start{}; // the stage's stress targets start here
+};
+
+// Runs all stages from the initial state, or from `resume` (then no row 0 is written). on_row
+// is called for step 0 and after every step, then on_step with the position after it; a
+// failure stops the run with result.ok = false and a reason naming step and stage. The
+// counters count the work of this call. Throws std::invalid_argument for an initial state of
+// the wrong length.
+ElementTestResult
+run_element_test(const MaterialChoice& material, const std::vector<double>& initial_state,
+                 const std::vector<ElementStage>& stages, const ElementTestSettings& settings,
+                 const std::function<void(const ElementRow&)>& on_row,
+                 const ElementTestPosition* resume = nullptr,
+                 const std::function<void(const ElementTestPosition&)>& on_step = {});
 
 } // namespace ifsim

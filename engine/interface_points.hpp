@@ -117,6 +117,28 @@ public:
         res.counters.interface_newton_iterations += last_newton_;
     }
 
+    // The committed state (model state in local axes, then the interface strains and the last
+    // sub-increment size), and its restoration for a resumed run.
+    std::vector<double> committed_state() const {
+        std::vector<double> out;
+        for (int k = 0; k < ContactPoints<Mi>::n_state_cols; ++k) {
+            out.push_back(points_.committed(k)[0]);
+        }
+        return out;
+    }
+    void restore(const std::vector<double>& state) {
+        if (static_cast<int>(state.size()) != ContactPoints<Mi>::n_state_cols) {
+            throw std::invalid_argument(fmt::format("resumed interface state of model {} needs {} "
+                                                    "values, got {}",
+                                                    Mi::name, ContactPoints<Mi>::n_state_cols,
+                                                    state.size()));
+        }
+        for (int k = 0; k < ContactPoints<Mi>::n_state_cols; ++k) {
+            points_.committed(k)[0] = state[static_cast<std::size_t>(k)];
+            points_.trial(k)[0] = state[static_cast<std::size_t>(k)];
+        }
+    }
+
     void fill(InterfaceRow& row, double d_s0) const {
         const double* y[NS];
         for (int k = 0; k < NS; ++k) {
@@ -195,6 +217,15 @@ public:
     void commit(InterfaceTestResult&) {
         tau_[0] = trial_[0];
         tau_[1] = trial_[1];
+    }
+    std::vector<double> committed_state() const { return {tau_[0], tau_[1]}; }
+    void restore(const std::vector<double>& state) {
+        if (state.size() != 2) {
+            throw std::invalid_argument(fmt::format(
+                "resumed Coulomb interface state needs 2 values, got {}", state.size()));
+        }
+        tau_[0] = trial_[0] = state[0];
+        tau_[1] = trial_[1] = state[1];
     }
     void fill(InterfaceRow& row, double) const {
         row.s_n = row.t_n;

@@ -23,7 +23,9 @@ using detail::seconds_since;
 template <class Ms, class Iface>
 InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Params& sp,
                           Iface& iface, InterfaceTestResult& result,
-                          const std::function<void(const InterfaceRow&)>& on_row) {
+                          const std::function<void(const InterfaceRow&)>& on_row,
+                          const InterfaceTestPosition* resume,
+                          const std::function<void(const InterfaceTestPosition&)>& on_step) {
     constexpr int NS = Ms::n_state;
     if (static_cast<int>(spec.sample_state.size()) != NS) {
         throw std::invalid_argument(fmt::format("sample state of model {} needs {} values, got {}",
@@ -35,14 +37,34 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
     StateVec<double, NS> ys{};
     std::copy(spec.sample_state.begin(), spec.sample_state.end(), ys.begin());
     const double H = spec.height;
-    const double t_N0 = ys[0];
+    const double t_N0 = ys[0]; // of the initial state, also when resumed
     const double K =
         spec.control == NormalControl::constant_stiffness ? spec.normal_stiffness : 0.0;
     const double d_s0 = spec.contact.interface.shear_band_thickness;
 
     double u_t[2] = {0.0, 0.0};
     double slip[2] = {0.0, 0.0};
-    double eps11 = 0.0; // sample normal strain since the start: u_n = eps11 H
+    double eps11 = 0.0;             // sample normal strain since the start: u_n = eps11 H
+    double guess_g[2] = {0.0, 0.0}; // per full step
+    double guess_e11 = 0.0;
+    int step = 0;
+    if (resume) {
+        if (static_cast<int>(resume->sample_state.size()) != NS) {
+            throw std::invalid_argument(fmt::format("resumed sample state of model {} needs {} "
+                                                    "values, got {}",
+                                                    Ms::name, NS, resume->sample_state.size()));
+        }
+        std::copy(resume->sample_state.begin(), resume->sample_state.end(), ys.begin());
+        iface.restore(resume->interface_state);
+        for (int a = 0; a < 2; ++a) {
+            u_t[a] = resume->u_t[a];
+            slip[a] = resume->slip[a];
+            guess_g[a] = resume->guess_g[a];
+        }
+        eps11 = resume->eps11;
+        guess_e11 = resume->guess_e11;
+        step = resume->step;
+    }
     InterfaceRow row;
     auto emit = [&](int step, int stage, int iterations) {
         row.step = step;
@@ -65,13 +87,12 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
         iface.fill(row, d_s0);
         on_row(row);
     };
-    emit(0, 0, 0);
+    if (!resume) {
+        emit(0, 0, 0);
+    }
 
     const std::vector<int> rows = {0, 3, 4, 1, 2};
     const std::vector<int> cols = {0, 3, 4};
-    double guess_g[2] = {0.0, 0.0}; // per full step
-    double guess_e11 = 0.0;
-    int step = 0;
     // One evaluation of the step equations at the unknowns x = (dg_T1, dg_T2, deps_11) for the
     // plate displacement increment du (this leaves the interface's trial state at x).
     struct Eval {
@@ -188,10 +209,12 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
 
     // Largest number of halvings of a step before the run gives up.
     constexpr int max_cuts = 6;
-    for (std::size_t s = 0; s < spec.stages.size(); ++s) {
+    const std::size_t first_stage = resume ? static_cast<std::size_t>(resume->stage) : 0;
+    for (std::size_t s = first_stage; s < spec.stages.size(); ++s) {
         const InterfaceStage& st = spec.stages[s];
         const double du_step[2] = {st.du_t1 / st.steps, st.du_t2 / st.steps};
-        for (int k = 1; k <= st.steps; ++k) {
+        const int first_k = resume && s == first_stage ? resume->step_in_stage + 1 : 1;
+        for (int k = first_k; k <= st.steps; ++k) {
             ++step;
             // Take the step whole if possible; on failure halve the rest, committing every
             // sub-step that converged (each is a valid increment of the test).
@@ -235,6 +258,22 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
             ++result.counters.increments;
             result.counters.step_cuts += cuts;
             emit(step, static_cast<int>(s) + 1, iterations);
+            if (on_step) {
+                InterfaceTestPosition pos;
+                pos.stage = static_cast<int>(s);
+                pos.step_in_stage = k;
+                pos.step = step;
+                pos.sample_state.assign(ys.begin(), ys.end());
+                pos.interface_state = iface.committed_state();
+                for (int a = 0; a < 2; ++a) {
+                    pos.u_t[a] = u_t[a];
+                    pos.slip[a] = slip[a];
+                    pos.guess_g[a] = guess_g[a];
+                }
+                pos.eps11 = eps11;
+                pos.guess_e11 = guess_e11;
+                on_step(pos);
+            }
         }
         if (!result.ok) {
             break;
@@ -250,8 +289,11 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
 
 } // namespace
 
-InterfaceTestResult run_interface_test(const InterfaceTestSpec& spec,
-                                       const std::function<void(const InterfaceRow&)>& on_row) {
+InterfaceTestResult
+run_interface_test(const InterfaceTestSpec& spec,
+                   const std::function<void(const InterfaceRow&)>& on_row,
+                   const InterfaceTestPosition* resume,
+                   const std::function<void(const InterfaceTestPosition&)>& on_step) {
     InterfaceTestResult result;
     return std::visit(
         [&](const auto& sp) {
@@ -259,13 +301,13 @@ InterfaceTestResult run_interface_test(const InterfaceTestSpec& spec,
             if (spec.contact.interface.formulation == InterfaceFormulation::coulomb) {
                 CoulombInterface iface(spec.coulomb, spec.sample_state.at(3),
                                        spec.sample_state.at(4), result);
-                return drive<Ms>(spec, sp, iface, result, on_row);
+                return drive<Ms>(spec, sp, iface, result, on_row, resume, on_step);
             }
             return std::visit(
                 [&](const auto& ip) {
                     using Mi = typename model_of<std::decay_t<decltype(ip)>>::type;
                     ContinuumInterface<Mi> iface(ip, spec.interface_state, spec.contact, result);
-                    return drive<Ms>(spec, sp, iface, result, on_row);
+                    return drive<Ms>(spec, sp, iface, result, on_row, resume, on_step);
                 },
                 spec.interface_material);
         },

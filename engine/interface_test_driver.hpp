@@ -81,10 +81,31 @@ struct InterfaceTestResult {
     double driver_seconds = 0.0;
 };
 
-// Runs all stages; on_row for step 0 and after every step. A failure stops the run with
-// ok = false and a reason naming step, stage and cause. Throws std::invalid_argument for
-// inconsistent input (state lengths).
-InterfaceTestResult run_interface_test(const InterfaceTestSpec& spec,
-                                       const std::function<void(const InterfaceRow&)>& on_row);
+// Where a run stands after a committed step: all a resumed run needs to continue bit for bit
+// (checkpoint and resume, docs/scenes.md).
+struct InterfaceTestPosition {
+    int stage = 0;         // 0-based stage of the last committed step
+    int step_in_stage = 0; // steps of that stage done
+    int step = 0;          // steps done in all
+    std::vector<double> sample_state;
+    // The interface point's committed state: model state and interface strains (continuum
+    // interface), or the shear tractions (Coulomb).
+    std::vector<double> interface_state;
+    double u_t[2] = {0.0, 0.0};
+    double slip[2] = {0.0, 0.0};
+    double eps11 = 0.0;
+    double guess_g[2] = {0.0, 0.0}; // the next step's first guess
+    double guess_e11 = 0.0;
+};
+
+// Runs all stages, or the rest from `resume` (then no row 0 is written); on_row for step 0
+// and after every step, then on_step with the position after it. A failure stops the run with
+// ok = false and a reason naming step, stage and cause. The counters count the work of this
+// call. Throws std::invalid_argument for inconsistent input (state lengths).
+InterfaceTestResult
+run_interface_test(const InterfaceTestSpec& spec,
+                   const std::function<void(const InterfaceRow&)>& on_row,
+                   const InterfaceTestPosition* resume = nullptr,
+                   const std::function<void(const InterfaceTestPosition&)>& on_step = {});
 
 } // namespace ifsim

@@ -1,11 +1,15 @@
 #!/usr/bin/env python3
 """Kill-and-resume check of checkpoints (docs/scenes.md, "Checkpoint and resume"): runs a
-boundary-value scene once uninterrupted, then again with checkpoints, killing it with SIGKILL
+scene once uninterrupted, then again with checkpoints, killing it with SIGKILL
 at random moments after a checkpoint was written (KILLS times, resuming after each), and
 finally lets `ifsim resume` finish it. history.csv of the interrupted run must equal the
 uninterrupted one byte for byte.
 
-Usage: check_resume.py IFSIM SCENE WORKDIR [--every N] [--kills K] [--seed S] [--set KEY=VALUE]...
+Works for every scene kind. With --fields both runs write field output and every .pvd
+collection and VTU file must be identical too.
+
+Usage: check_resume.py IFSIM SCENE WORKDIR [--every N] [--kills K] [--seed S] [--fields]
+                       [--set KEY=VALUE]...
 Exit 0 when identical, 1 otherwise.
 """
 import argparse
@@ -34,6 +38,30 @@ def wait_for_new_checkpoint(path, after_mtime, proc, timeout=60.0):
     return False
 
 
+def field_files(run):
+    """The .pvd collections and VTU files of a run, relative to its folder."""
+    out = sorted(f for f in os.listdir(run) if f.endswith(".pvd"))
+    fields = os.path.join(run, "fields")
+    if os.path.isdir(fields):
+        out += sorted(os.path.join("fields", f) for f in os.listdir(fields))
+    return out
+
+
+def compare_fields(whole, cut):
+    a, b = field_files(whole), field_files(cut)
+    if a != b:
+        print(f"check_resume: field files differ: {sorted(set(a) ^ set(b))}")
+        return False
+    differing = [f for f in a if not filecmp.cmp(os.path.join(whole, f), os.path.join(cut, f),
+                                                 shallow=False)]
+    print(f"check_resume: {len(a)} field file(s); "
+          f"{'identical' if not differing else 'DIFFER: ' + ', '.join(differing[:5])}")
+    if not a:
+        print("check_resume: --fields given but the run wrote no field files")
+        return False
+    return not differing
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("ifsim")
@@ -43,9 +71,10 @@ def main():
     ap.add_argument("--kills", type=int, default=2)
     ap.add_argument("--seed", type=int, default=None)
     ap.add_argument("--set", action="append", default=[])
+    ap.add_argument("--fields", action="store_true")
     a = ap.parse_args()
     rng = random.Random(a.seed)
-    sets = [x for s in a.set for x in ("--set", s)]
+    sets = [x for s in a.set for x in ("--set", s)] + (["--fields"] if a.fields else [])
     shutil.rmtree(a.workdir, ignore_errors=True)
     whole, cut = os.path.join(a.workdir, "whole"), os.path.join(a.workdir, "interrupted")
     subprocess.run([a.ifsim, "run", a.scene, "--out", whole, "-q"] + sets, check=True)
@@ -71,6 +100,8 @@ def main():
     same = filecmp.cmp(os.path.join(whole, "history.csv"), os.path.join(cut, "history.csv"),
                        shallow=False)
     print(f"check_resume: {kills} kill(s); history.csv {'identical' if same else 'DIFFERS'}")
+    if a.fields:
+        same = compare_fields(whole, cut) and same
     if kills == 0:
         print("check_resume: the run ended before any kill; use a longer scene or --every")
         return 1

@@ -11,19 +11,63 @@ std::vector<std::int64_t> ints(std::initializer_list<std::int64_t> v) {
     return std::vector<std::int64_t>(v);
 }
 
+// The field collections: times as doubles, file names one per line.
+void put_fields(CheckpointWriter& w, const FieldOutputState& f) {
+    w.put("fields", ints({f.present ? 1 : 0, static_cast<std::int64_t>(f.next_time),
+                          static_cast<std::int64_t>(f.outputs),
+                          static_cast<std::int64_t>(f.collections.size())}));
+    for (std::size_t k = 0; k < f.collections.size(); ++k) {
+        std::vector<double> times;
+        std::string files;
+        for (const PvdCollection::Entry& e : f.collections[k]) {
+            times.push_back(e.time);
+            files += e.file + "\n";
+        }
+        w.put(fmt::format("fields{}.times", k), times);
+        w.put(fmt::format("fields{}.files", k), files);
+    }
+}
+
+FieldOutputState read_fields(const CheckpointReader& r, const std::filesystem::path& file) {
+    FieldOutputState f;
+    const auto head = r.integers("fields");
+    if (head.size() != 4 || head[1] < 0 || head[2] < 0 || head[3] < 0) {
+        throw CheckpointError(fmt::format("{}: malformed fields section", file.string()));
+    }
+    f.present = head[0] != 0;
+    f.next_time = static_cast<std::size_t>(head[1]);
+    f.outputs = static_cast<std::size_t>(head[2]);
+    for (std::int64_t k = 0; k < head[3]; ++k) {
+        const auto times = r.doubles(fmt::format("fields{}.times", k));
+        const std::string files = r.text(fmt::format("fields{}.files", k));
+        std::vector<PvdCollection::Entry> entries;
+        std::size_t at = 0;
+        for (double t : times) {
+            const std::size_t end = files.find('\n', at);
+            if (end == std::string::npos) {
+                throw CheckpointError(fmt::format("{}: malformed fields section", file.string()));
+            }
+            entries.push_back({t, files.substr(at, end - at)});
+            at = end + 1;
+        }
+        f.collections.push_back(std::move(entries));
+    }
+    return f;
+}
+
 } // namespace
 
 void write_boundary_value_checkpoint(const std::filesystem::path& dir,
                                      const BoundaryValueCheckpoint& c) {
     CheckpointWriter w;
     const fem::SolverSnapshot& s = c.snapshot;
-    w.put("kind", std::string("boundary-value"));
-    w.put("scene", c.scene_text);
-    w.put("position", ints({c.simd ? 1 : 0, static_cast<std::int64_t>(c.stage_index), c.cursor.step,
-                            c.cursor.depth, c.cursor.streak, c.increment, c.steps_before,
-                            c.history_bytes, c.resumes, s.stage_count, s.committed_references}));
+    RunCheckpointHeader header = c.run;
+    header.kind = "boundary-value";
+    put_run_header(w, header);
+    w.put("position",
+          ints({static_cast<std::int64_t>(c.stage_index), c.cursor.step, c.cursor.depth,
+                c.cursor.streak, c.steps_before, s.stage_count, s.committed_references}));
     w.put("cursor_t", std::vector<double>{c.cursor.t_a});
-    w.put("interval", std::vector<double>{double(c.every), c.minutes});
     w.put("iterations", std::vector<std::int64_t>(c.iterations.begin(), c.iterations.end()));
     w.put("u", s.u);
     w.put("u_stage_start", s.u_stage_start);
@@ -49,41 +93,28 @@ void write_boundary_value_checkpoint(const std::filesystem::path& dir,
         w.put(key + "relax", p.relax);
         w.put(key + "calm", p.calm);
     }
+    put_fields(w, c.fields);
     w.write(dir / checkpoint_file_name);
 }
 
 BoundaryValueCheckpoint read_boundary_value_checkpoint(const std::filesystem::path& dir) {
-    const CheckpointReader r(dir / checkpoint_file_name);
-    if (r.text("kind") != "boundary-value") {
-        throw CheckpointError(fmt::format("{}: a checkpoint of a {} run; resume reads "
-                                          "boundary-value runs",
-                                          (dir / checkpoint_file_name).string(), r.text("kind")));
-    }
+    const std::filesystem::path file = dir / checkpoint_file_name;
+    const CheckpointReader r(file);
     BoundaryValueCheckpoint c;
-    c.scene_text = r.text("scene");
+    c.run = read_run_header(r, file, "boundary-value");
     const auto pos = r.integers("position");
-    if (pos.size() != 11) {
-        throw CheckpointError(
-            fmt::format("{}: malformed position section", (dir / checkpoint_file_name).string()));
+    if (pos.size() != 7) {
+        throw CheckpointError(fmt::format("{}: malformed position section", file.string()));
     }
-    c.simd = pos[0] != 0;
-    c.stage_index = static_cast<std::size_t>(pos[1]);
-    c.cursor.step = static_cast<int>(pos[2]);
-    c.cursor.depth = static_cast<int>(pos[3]);
-    c.cursor.streak = static_cast<int>(pos[4]);
-    c.increment = pos[5];
-    c.steps_before = pos[6];
-    c.history_bytes = pos[7];
-    c.resumes = pos[8];
+    c.stage_index = static_cast<std::size_t>(pos[0]);
+    c.cursor.step = static_cast<int>(pos[1]);
+    c.cursor.depth = static_cast<int>(pos[2]);
+    c.cursor.streak = static_cast<int>(pos[3]);
+    c.steps_before = pos[4];
     fem::SolverSnapshot& s = c.snapshot;
-    s.stage_count = static_cast<int>(pos[9]);
-    s.committed_references = pos[10];
+    s.stage_count = static_cast<int>(pos[5]);
+    s.committed_references = pos[6];
     c.cursor.t_a = r.real("cursor_t");
-    const auto interval = r.doubles("interval");
-    if (interval.size() == 2) {
-        c.every = static_cast<long>(interval[0]);
-        c.minutes = interval[1];
-    }
     for (std::int64_t v : r.integers("iterations")) {
         c.iterations.push_back(static_cast<int>(v));
     }
@@ -95,8 +126,7 @@ BoundaryValueCheckpoint read_boundary_value_checkpoint(const std::filesystem::pa
     const auto scalars = r.doubles("scalars");
     const auto imb = r.doubles("imbalance");
     if (scalars.size() != 2 || imb.size() != 5) {
-        throw CheckpointError(
-            fmt::format("{}: malformed solver section", (dir / checkpoint_file_name).string()));
+        throw CheckpointError(fmt::format("{}: malformed solver section", file.string()));
     }
     s.dt_last = scalars[0];
     s.reference_sum = scalars[1];
@@ -118,6 +148,7 @@ BoundaryValueCheckpoint read_boundary_value_checkpoint(const std::filesystem::pa
         p.calm = r.doubles(key + "calm");
         s.contacts.push_back(std::move(p));
     }
+    c.fields = read_fields(r, file);
     return c;
 }
 

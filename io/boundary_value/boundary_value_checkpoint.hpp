@@ -6,29 +6,23 @@
 
 #include <cstdint>
 #include <filesystem>
-#include <string>
 #include <vector>
 
 #include "fem/static_solver.hpp"
+#include "io/boundary_value/boundary_value_fields.hpp"
+#include "io/output/run_checkpoint.hpp"
 
 namespace ifsim::io {
 
 struct BoundaryValueCheckpoint {
-    std::string scene_text;      // DIR/scene.toml as the run started (must match on resume)
-    bool simd = true;            // the kernel path (SIMD and scalar differ in round-off)
+    RunCheckpointHeader run;     // scene, kernel path, rows, history length, interval
     std::size_t stage_index = 0; // 0-based stage the cursor is in
     fem::StageCursor cursor;     // where that stage goes on
-    long increment = 0;          // rows after row 0
     long steps_before = 0;       // nominal steps of the stages before
-    long long history_bytes = 0; // history.csv.partial's length at the checkpoint
     std::vector<int> iterations; // Newton iterations of every increment so far
-    long resumes = 0;            // how often this run was resumed already
-    long every = 0;              // the run's checkpoint interval (a resumed run keeps it)
-    double minutes = 0.0;
     fem::SolverSnapshot snapshot;
+    FieldOutputState fields; // the field collections so far (a run with fields)
 };
-
-inline constexpr const char* checkpoint_file_name = "checkpoint";
 
 // Writes DIR/checkpoint atomically. Throws std::runtime_error naming the file.
 void write_boundary_value_checkpoint(const std::filesystem::path& dir,

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -112,6 +113,31 @@ bool FieldOutput::due(long increment, double time, bool stage_end) {
         ++next_time_;
     }
     return due;
+}
+
+FieldOutputState FieldOutput::state() const {
+    FieldOutputState out;
+    out.present = true;
+    out.next_time = next_time_;
+    out.outputs = outputs_;
+    out.collections.push_back(mesh_pvd_->entries());
+    for (const auto& p : contact_pvd_) {
+        out.collections.push_back(p->entries());
+    }
+    return out;
+}
+
+void FieldOutput::restore(const FieldOutputState& state) {
+    if (!state.present || state.collections.size() != contact_pvd_.size() + 1 ||
+        state.next_time > schedule_.times.size()) {
+        throw std::runtime_error("the checkpoint's field collections do not fit the scene");
+    }
+    next_time_ = state.next_time;
+    outputs_ = state.outputs;
+    mesh_pvd_->restore(state.collections[0]);
+    for (std::size_t k = 0; k < contact_pvd_.size(); ++k) {
+        contact_pvd_[k]->restore(state.collections[k + 1]);
+    }
 }
 
 void FieldOutput::flush() const {

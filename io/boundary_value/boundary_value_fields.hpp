@@ -20,6 +20,15 @@ namespace ifsim::io {
 
 struct BoundaryValueScene;
 
+// What a field output has written so far: carried by a checkpoint so that a resumed run
+// continues the collections.
+struct FieldOutputState {
+    bool present = false;                                       // the run writes fields
+    std::size_t next_time = 0;                                  // first named time not yet written
+    std::size_t outputs = 0;                                    // output times written
+    std::vector<std::vector<PvdCollection::Entry>> collections; // mesh, then each pair
+};
+
 class FieldOutput {
 public:
     // Prepares DIR/fields/ and the collections DIR/mesh.pvd and DIR/contact-<pair>.pvd.
@@ -29,6 +38,11 @@ public:
     bool due(long increment, double time, bool stage_end);
     // Writes the committed state of the solver as output number `increment` at `time`.
     void write(const fem::StaticSolver& solver, long increment, double time);
+
+    FieldOutputState state() const;
+    // Continues from a checkpoint's state. Throws std::runtime_error when it does not fit the
+    // scene's collections.
+    void restore(const FieldOutputState& state);
 
     // Rewrites the collections (at stage ends and at the end of the run).
     void flush() const;

@@ -96,12 +96,9 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
     out.nodes = scene.mesh.n_nodes();
     out.elements = scene.mesh.n_elements();
     const BoundaryValueCheckpoint* resume = checkpoints.resume;
-    HistoryWriter history = resume
-                                ? HistoryWriter(dir, boundary_value_history_columns(scene),
-                                                {resume->history_bytes,
-                                                 static_cast<std::size_t>(resume->increment) + 1})
-                                : HistoryWriter(dir, boundary_value_history_columns(scene));
-    auto last_checkpoint = Clock::now();
+    HistoryWriter history =
+        open_history(dir, boundary_value_history_columns(scene), resume ? &resume->run : nullptr);
+    CheckpointSchedule checkpoint_due(checkpoints);
     ProgressLine line(progress, scene.total_steps(), static_cast<int>(scene.stages.size()));
     std::unique_ptr<fem::StaticSolver> solver;
     std::optional<FieldOutput> fields; // only when the scene asks: no field code runs otherwise
@@ -121,11 +118,15 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
             fields.emplace(scene, dir);
             out.field_collections = fields->collections();
             out.field_materials = fields->material_names();
-            fields->due(0, 0.0, false);
-            fields->write(*solver, 0, 0.0);
+            if (resume) {
+                fields->restore(resume->fields);
+            } else {
+                fields->due(0, 0.0, false);
+                fields->write(*solver, 0, 0.0);
+            }
         }
         long steps_before = resume ? resume->steps_before : 0;
-        long increment = resume ? resume->increment : 0;
+        long increment = resume ? resume->run.increment : 0;
         const std::size_t first_stage = resume ? resume->stage_index : 0;
         if (resume) {
             out.iterations = resume->iterations;
@@ -157,27 +158,28 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
                 if (fields && fields->due(increment, row.time, stage_end)) {
                     fields->write(*solver, increment, row.time); // timed by FieldOutput
                 }
-                const bool by_count = checkpoints.every > 0 && increment % checkpoints.every == 0;
-                const bool by_time = checkpoints.minutes > 0.0 &&
-                                     since(last_checkpoint) >= 60.0 * checkpoints.minutes;
-                if (by_count || by_time) {
+                if (checkpoints.enabled() && checkpoint_due.due(increment)) {
                     const auto t2 = Clock::now();
                     BoundaryValueCheckpoint c;
-                    c.scene_text = checkpoints.scene_text;
-                    c.simd = simd;
+                    c.run = {"boundary-value",
+                             checkpoints.scene_text,
+                             simd,
+                             increment,
+                             history.sync(),
+                             resume ? resume->run.resumes + 1 : 0,
+                             checkpoints.every,
+                             checkpoints.minutes};
                     c.stage_index = k;
                     c.cursor = info.next;
-                    c.increment = increment;
                     c.steps_before = steps_before;
-                    c.history_bytes = history.sync();
                     c.iterations = out.iterations;
-                    c.resumes = resume ? resume->resumes + 1 : 0;
-                    c.every = checkpoints.every;
-                    c.minutes = checkpoints.minutes;
                     c.snapshot = solver->snapshot();
+                    if (fields) {
+                        c.fields = fields->state(); // a resumed run continues the collections
+                    }
                     write_boundary_value_checkpoint(dir, c);
                     ++out.checkpoints;
-                    last_checkpoint = Clock::now();
+                    checkpoint_due.written();
                     out.checkpoint_seconds += since(t2);
                 }
             };
@@ -229,9 +231,8 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
         out.equations = solver->dof_map().n_equations;
         out.setup_seconds = std::max(0.0, out.setup_seconds - out.timers.k0);
     }
-    if (out.ok && (checkpoints.enabled() || resume)) {
-        std::error_code ignored; // the run is complete: nothing to resume
-        std::filesystem::remove(dir / checkpoint_file_name, ignored);
+    if (out.ok) {
+        remove_checkpoint(dir); // the run is complete: nothing to resume
     }
     const auto t2 = Clock::now();
     history.finish();

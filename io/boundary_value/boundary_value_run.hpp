@@ -41,12 +41,8 @@ struct BoundaryValueRunOutcome {
 };
 
 // Checkpoints of a run (--checkpoint-every, --checkpoint-minutes) and a run resumed from one.
-struct BoundaryValueCheckpointing {
-    long every = 0;         // increments between checkpoints (0: none by count)
-    double minutes = 0.0;   // wall-clock minutes between checkpoints (0: none by time)
-    std::string scene_text; // DIR/scene.toml, stored in the checkpoint
+struct BoundaryValueCheckpointing : CheckpointRequest {
     const BoundaryValueCheckpoint* resume = nullptr; // continue from this one
-    bool enabled() const { return every > 0 || minutes > 0.0; }
 };
 
 // Writes DIR/history.csv. Throws std::runtime_error only when history.csv cannot be written

@@ -57,11 +57,11 @@ namespace {
 // --checkpoint-every and --checkpoint-minutes, the same for `run` and `resume`.
 void add_checkpoint_options(CLI::App* cmd, RunOptions& opt) {
     cmd->add_option("--checkpoint-every", opt.checkpoint_every,
-                    "Boundary-value scenes: write DIR/checkpoint every N increments (continue a "
-                    "killed run with `ifsim resume DIR`)")
+                    "Write DIR/checkpoint every N increments or steps (continue a killed run "
+                    "with `ifsim resume DIR`; every scene kind)")
         ->check(CLI::Range(1L, 1'000'000'000L));
     cmd->add_option("--checkpoint-minutes", opt.checkpoint_minutes,
-                    "Boundary-value scenes: write DIR/checkpoint every M minutes")
+                    "Write DIR/checkpoint every M minutes of wall-clock time")
         ->check(CLI::PositiveNumber);
 }
 
@@ -111,7 +111,7 @@ int run_cli(int argc, const char* const* argv) {
     std::string resume_dir;
     bool resume_progress = false;
     CLI::App* resume_cmd = app.add_subcommand(
-        "resume", "Continue a killed or stopped boundary-value run from DIR/checkpoint");
+        "resume", "Continue a killed or stopped run from DIR/checkpoint (every scene kind)");
     resume_cmd->add_option("dir", resume_dir, "The run's output directory")->required();
     resume_cmd->add_option("--threads", resume.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 4096));

@@ -14,9 +14,11 @@
 #include "io/boundary_value/boundary_value_scene.hpp"
 #include "io/cli/exit_codes.hpp"
 #include "io/cli/thread_limit.hpp"
+#include "io/element_test/element_checkpoint.hpp"
 #include "io/element_test/element_history.hpp"
 #include "io/element_test/element_test_run.hpp"
 #include "io/element_test/element_test_scene.hpp"
+#include "io/interface_test/interface_checkpoint.hpp"
 #include "io/interface_test/interface_test_run.hpp"
 #include "io/interface_test/interface_test_scene.hpp"
 #include "io/output/atomic_file.hpp"
@@ -51,11 +53,45 @@ std::string write_scene_copy(const fs::path& dir, toml::table table, const RunOp
     for (const std::string& set : opt.sets) {
         header += fmt::format("#   --set {}\n", set);
     }
+    if (opt.fields) {
+        header += "#   --fields\n";
+    }
+    if (opt.fields_every > 0) {
+        header += fmt::format("#   --fields-every {}\n", opt.fields_every);
+    }
     header += "# (overrides applied below; rerun: ifsim run scene.toml --out DIR)\n\n";
     std::ostringstream text;
     text << header << table << "\n";
     write_file_atomically(dir / "scene.toml", text.str());
     return text.str();
+}
+
+// --fields and --fields-every written into the scene's [output] fields, so that the scene copy
+// says what the run wrote (and `ifsim resume` writes the same).
+void apply_field_switches(toml::table& table, const RunOptions& opt) {
+    if (!opt.fields && opt.fields_every <= 0) {
+        return;
+    }
+    toml::table* output = table["output"].as_table();
+    if (output == nullptr) {
+        table.insert_or_assign("output", toml::table{});
+        output = table["output"].as_table();
+    }
+    toml::table fields;
+    bool stages = false;
+    if (const toml::node* f = output->get("fields")) {
+        if (const auto b = f->value<bool>()) {
+            stages = *b;
+        } else if (const toml::table* t = f->as_table()) {
+            fields = *t;
+            stages = (*t)["stages"].value_or(true);
+        }
+    }
+    fields.insert_or_assign("stages", stages || opt.fields);
+    if (opt.fields_every > 0) {
+        fields.insert_or_assign("every", static_cast<std::int64_t>(opt.fields_every));
+    }
+    output->insert_or_assign("fields", std::move(fields));
 }
 
 std::string read_text_file(const fs::path& p) {
@@ -138,36 +174,57 @@ struct Scene {
     BoundaryValueScene boundary_value;
 };
 
+// The checkpoint of the run being resumed (ifsim resume DIR), of its kind.
+struct Resumed {
+    std::string kind;
+    BoundaryValueCheckpoint boundary_value;
+    ElementTestCheckpoint element;
+    InterfaceTestCheckpoint interface;
+
+    explicit Resumed(const fs::path& dir) : kind(checkpoint_kind(dir)) {
+        if (kind == "boundary-value") {
+            boundary_value = read_boundary_value_checkpoint(dir);
+        } else if (kind == "element-test") {
+            element = read_element_test_checkpoint(dir);
+        } else if (kind == "interface-test") {
+            interface = read_interface_test_checkpoint(dir);
+        } else {
+            throw CheckpointError(fmt::format("{}: a checkpoint of an unknown kind \"{}\"",
+                                              (dir / checkpoint_file_name).string(), kind));
+        }
+    }
+    const RunCheckpointHeader& run() const {
+        return kind == "boundary-value" ? boundary_value.run
+               : kind == "element-test" ? element.run
+                                        : interface.run;
+    }
+};
+
+// Checkpoints written by a run, for summary.json.
+struct CheckpointCount {
+    long written = 0;
+    double seconds = 0.0;
+};
+
 // Runs the scene's kind and fills the summary with its results. Throws std::runtime_error when
 // history.csv cannot be written at all.
 void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double parse_s,
-              const BoundaryValueCheckpointing& checkpoints, RunSummary& summary,
-              std::string& label, long& steps) {
+              const CheckpointRequest& checkpoints, const Resumed* resumed, RunSummary& summary,
+              CheckpointCount& written, std::string& label, long& steps) {
     const ProgressMode progress = opt.quiet ? ProgressMode::never : opt.progress;
+    const bool simd = resumed ? resumed->run().simd : !opt.scalar;
     if (scene.kind == "boundary-value") {
         BoundaryValueScene& s = scene.boundary_value;
-        s.output.fields.stages = s.output.fields.stages || opt.fields;
-        if (opt.fields_every > 0) {
-            s.output.fields.every = opt.fields_every;
-        }
         if (!opt.quiet) {
             fmt::print(stderr, "ifsim: {}: {}\n", opt.scene,
                        describe_effects(boundary_value_effects(s)));
         }
-        const bool simd = checkpoints.resume ? checkpoints.resume->simd : !opt.scalar;
-        const BoundaryValueRunOutcome run =
-            run_boundary_value_scene(s, dir, progress, simd, checkpoints);
+        BoundaryValueCheckpointing bv;
+        static_cast<CheckpointRequest&>(bv) = checkpoints;
+        bv.resume = resumed ? &resumed->boundary_value : nullptr;
+        const BoundaryValueRunOutcome run = run_boundary_value_scene(s, dir, progress, simd, bv);
         add_boundary_value_results(summary, s, run, parse_s);
-        if (checkpoints.enabled()) {
-            summary.details["checkpoints"] = {{"every", checkpoints.every},
-                                              {"minutes", checkpoints.minutes},
-                                              {"written", run.checkpoints},
-                                              {"seconds", run.checkpoint_seconds}};
-        }
-        if (checkpoints.resume) {
-            summary.details["resumed"] = {{"from_increment", checkpoints.resume->increment},
-                                          {"times", checkpoints.resume->resumes + 1}};
-        }
+        written = {run.checkpoints, run.checkpoint_seconds};
         label = fmt::format("{}D FE", s.mesh_spec.dimension);
         if (s.contacts.size() == 1) {
             label += ", " + s.contacts.front().formulation.name();
@@ -179,19 +236,23 @@ void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double p
     }
     if (scene.kind == "interface-test") {
         InterfaceTestScene& s = scene.interface;
-        s.spec.contact.simd = !opt.scalar;
-        s.spec.sample_update.simd = !opt.scalar;
-        const InterfaceRunOutcome run = run_interface_test_scene(s, dir, progress);
+        s.spec.contact.simd = simd;
+        s.spec.sample_update.simd = simd;
+        const InterfaceRunOutcome run = run_interface_test_scene(
+            s, dir, progress, checkpoints, resumed ? &resumed->interface : nullptr);
         add_interface_test_results(summary, s, run, parse_s);
+        written = {run.checkpoints, run.checkpoint_seconds};
         const std::string_view f = formulation_name(s.spec.contact.interface.formulation);
         label = s.coulomb() ? std::string(f) : fmt::format("{} {}", f, s.interface_material.model);
         steps = s.total_steps();
         return;
     }
     ElementTestScene& s = scene.element;
-    s.settings.update.simd = !opt.scalar;
-    const ElementRunOutcome run = run_element_test_scene(s, dir, progress);
+    s.settings.update.simd = simd;
+    const ElementRunOutcome run = run_element_test_scene(s, dir, progress, checkpoints,
+                                                         resumed ? &resumed->element : nullptr);
     add_element_test_results(summary, s, run, parse_s);
+    written = {run.checkpoints, run.checkpoint_seconds};
     label = s.material.model;
     steps = s.total_steps();
 }
@@ -211,30 +272,23 @@ int run_command(const RunOptions& opt) {
 
     // Resume: the checkpoint and the scene copy of DIR, checked against each other before
     // anything in DIR changes.
-    std::optional<BoundaryValueCheckpoint> checkpoint;
+    std::optional<Resumed> checkpoint;
     std::string scene_text;
     if (opt.resume) {
         try {
-            checkpoint = read_boundary_value_checkpoint(dir);
+            checkpoint.emplace(dir);
         } catch (const std::exception& e) {
             fmt::print(stderr, "ifsim: error: cannot resume: {}\n", e.what());
             return exit_code::bad_input;
         }
         scene_text = read_text_file(dir / "scene.toml");
-        if (scene_text != checkpoint->scene_text) {
+        if (scene_text != checkpoint->run().scene_text) {
             fmt::print(stderr,
                        "ifsim: error: cannot resume: {} is not the scene the checkpoint was "
                        "written for (changed since the run started)\n",
                        (dir / "scene.toml").string());
             return exit_code::bad_input;
         }
-    }
-    if ((opt.checkpoint_every > 0 || opt.checkpoint_minutes > 0.0) &&
-        (opt.fields || opt.fields_every > 0)) {
-        fmt::print(stderr, "ifsim: error: checkpoints together with field output are not "
-                           "supported yet (a resumed run would not continue the .pvd "
-                           "collections); run with one of them\n");
-        return exit_code::bad_input;
     }
 
     // Parse: the scene, the overrides, the kind's schema.
@@ -254,6 +308,7 @@ int run_command(const RunOptions& opt) {
         } else if (scene.kind == "interface-test") {
             scene.interface = read_interface_test_scene(table, opt.scene);
         } else if (scene.kind == "boundary-value") {
+            apply_field_switches(table, opt);
             scene.boundary_value = read_boundary_value_scene(table, opt.scene);
             if (!scene.boundary_value.mesh_spec.file.empty()) {
                 mesh_path = fs::absolute(scene.boundary_value.mesh_spec.path).string();
@@ -318,32 +373,41 @@ int run_command(const RunOptions& opt) {
     summary.details["scene_copy"] = "scene.toml";
     // Options of boundary-value runs given for another kind: a bad command line.
     const bool fields = opt.fields || opt.fields_every > 0;
-    const bool checkpoints_asked =
-        opt.checkpoint_every > 0 || opt.checkpoint_minutes > 0.0 || opt.resume;
-    if ((fields || checkpoints_asked) && scene.kind != "boundary-value") {
+    if (fields && scene.kind != "boundary-value") {
         const std::string message = fmt::format(
-            "{} apply to boundary-value scenes only (so far); {} is a scene of kind \"{}\"",
-            fields ? "--fields and --fields-every" : "checkpoints and resume", opt.scene,
-            scene.kind);
+            "--fields and --fields-every apply to boundary-value scenes (the others have no "
+            "field); {} is a scene of kind \"{}\"",
+            opt.scene, scene.kind);
         fmt::print(stderr, "ifsim: error: {}\n", message);
         summary.ok = false;
         summary.reason = message;
         summary.wall_s = since(t_start);
         return write_summary_or_report(dir, summary, exit_code::bad_input);
     }
-    BoundaryValueCheckpointing checkpoints;
+    CheckpointRequest checkpoints;
     checkpoints.every = opt.checkpoint_every;
     checkpoints.minutes = opt.checkpoint_minutes;
     checkpoints.scene_text = scene_text;
-    checkpoints.resume = checkpoint ? &*checkpoint : nullptr;
     if (checkpoint && !checkpoints.enabled()) { // a resumed run keeps its interval
-        checkpoints.every = checkpoint->every;
-        checkpoints.minutes = checkpoint->minutes;
+        checkpoints.every = checkpoint->run().every;
+        checkpoints.minutes = checkpoint->run().minutes;
     }
     std::string label;
     long steps = 0;
+    CheckpointCount written;
     try {
-        run_kind(scene, opt, dir, parse_s, checkpoints, summary, label, steps);
+        run_kind(scene, opt, dir, parse_s, checkpoints, checkpoint ? &*checkpoint : nullptr,
+                 summary, written, label, steps);
+        if (checkpoints.enabled()) {
+            summary.details["checkpoints"] = {{"every", checkpoints.every},
+                                              {"minutes", checkpoints.minutes},
+                                              {"written", written.written},
+                                              {"seconds", written.seconds}};
+        }
+        if (checkpoint) {
+            summary.details["resumed"] = {{"from_increment", checkpoint->run().increment},
+                                          {"times", checkpoint->run().resumes + 1}};
+        }
     } catch (const std::exception& e) {
         fmt::print(stderr, "ifsim: error: {}\n", e.what());
         summary.ok = false;

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "engine/element_test_driver.hpp"
+#include "io/element_test/element_checkpoint.hpp"
 #include "io/element_test/element_test_scene.hpp"
 #include "io/output/progress.hpp"
 
@@ -17,11 +18,16 @@ struct ElementRunOutcome {
     std::size_t rows = 0;        // rows in history.csv
     double row_seconds = 0.0;    // writing rows and progress, inside result.driver_seconds
     double finish_seconds = 0.0; // closing and renaming history.csv
+    long checkpoints = 0;        // checkpoints written by this run
+    double checkpoint_seconds = 0.0;
 };
 
-// Writes DIR/history.csv (kept with the rows so far when the run fails). Throws
+// Writes DIR/history.csv (kept with the rows so far when the run fails), and DIR/checkpoint
+// as asked (removed when the run completes); continues `resume` when given. Throws
 // std::runtime_error only when history.csv cannot be written at all.
 ElementRunOutcome run_element_test_scene(const ElementTestScene& scene,
-                                         const std::filesystem::path& dir, ProgressMode progress);
+                                         const std::filesystem::path& dir, ProgressMode progress,
+                                         const CheckpointRequest& checkpoints = {},
+                                         const ElementTestCheckpoint* resume = nullptr);
 
 } // namespace ifsim::io

@@ -17,9 +17,12 @@ namespace ifsim::io {
 
 InterfaceRunOutcome run_interface_test_scene(const InterfaceTestScene& scene,
                                              const std::filesystem::path& dir,
-                                             ProgressMode progress) {
+                                             ProgressMode progress,
+                                             const CheckpointRequest& checkpoints,
+                                             const InterfaceTestCheckpoint* resume) {
     InterfaceRunOutcome out;
-    HistoryWriter history(dir, interface_history_columns());
+    HistoryWriter history =
+        open_history(dir, interface_history_columns(), resume ? &resume->run : nullptr);
     ProgressLine line(progress, scene.total_steps(), static_cast<int>(scene.spec.stages.size()));
     const double t_N0 = scene.initial_normal_stress();
     const double K =
@@ -30,14 +33,36 @@ InterfaceRunOutcome run_interface_test_scene(const InterfaceTestScene& scene,
         line.update(row.step, row.stage);
         out.row_seconds += since(t0);
     };
+    CheckpointSchedule due(checkpoints);
+    const auto on_step = [&](const InterfaceTestPosition& pos) {
+        if (!due.due(pos.step)) {
+            return;
+        }
+        const auto t0 = Clock::now();
+        InterfaceTestCheckpoint c;
+        c.run = {"interface-test",  checkpoints.scene_text, scene.spec.contact.simd,
+                 pos.step,          history.sync(),         resume ? resume->run.resumes + 1 : 0,
+                 checkpoints.every, checkpoints.minutes};
+        c.position = pos;
+        write_interface_test_checkpoint(dir, c);
+        ++out.checkpoints;
+        due.written();
+        out.checkpoint_seconds += since(t0);
+    };
     try {
-        out.result = run_interface_test(scene.spec, on_row);
+        out.result = run_interface_test(
+            scene.spec, on_row, resume ? &resume->position : nullptr,
+            checkpoints.enabled() ? std::function<void(const InterfaceTestPosition&)>(on_step)
+                                  : std::function<void(const InterfaceTestPosition&)>());
     } catch (const std::exception& e) {
         // A writer or engine error in the middle of the run: keep the rows so far.
         out.result.ok = false;
         out.result.reason = fmt::format("run aborted: {}", e.what());
     }
     line.finish();
+    if (out.result.ok) {
+        remove_checkpoint(dir);
+    }
     const auto t1 = Clock::now();
     history.finish();
     out.finish_seconds = since(t1);

@@ -57,11 +57,15 @@ public:
     const std::filesystem::path& path() const { return path_; }
     std::size_t size() const { return entries_.size(); }
 
-private:
     struct Entry {
         double time;
         std::string file;
     };
+    const std::vector<Entry>& entries() const { return entries_; }
+    // A resumed run continues the collection it had at its checkpoint.
+    void restore(std::vector<Entry> entries) { entries_ = std::move(entries); }
+
+private:
     std::filesystem::path path_;
     std::vector<Entry> entries_;
 };

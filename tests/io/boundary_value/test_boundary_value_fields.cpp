@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "io/element_test/element_checkpoint.hpp"
 #include "tests/io/boundary_value_test_support.hpp"
 #include "tests/io/scene_test_support.hpp"
 
@@ -154,8 +155,9 @@ namespace ifsim::io {
 namespace {
 
 // ifsim resume refuses what it cannot continue and changes nothing: no checkpoint (a finished
-// run removed it), a damaged one, a scene of another kind; the killed-and-resumed runs
-// themselves are checked byte for byte by scripts/check_resume.py (Checkpoint.* tests).
+// run removed it), a damaged one; every kind writes checkpoints and removes them when complete.
+// The killed-and-resumed runs themselves are checked byte for byte by scripts/check_resume.py
+// (Checkpoint.* tests).
 TEST(Resume, RefusesWhatItCannotContinueAndChangesNothing) {
     const fs::path dir = test::fresh_dir("resume-refused");
     const auto r = run(dir, {"--checkpoint-every", "5"});
@@ -177,15 +179,25 @@ TEST(Resume, RefusesWhatItCannotContinueAndChangesNothing) {
     EXPECT_EQ(again.code, 2);
     EXPECT_NE(again.err.find("not an ifsim checkpoint"), std::string::npos) << again.err;
     EXPECT_EQ(test::read_text(dir / "history.csv"), history);
-    const auto element =
-        test::run_cli_captured({"run", "scenes/element-hypo-oedometer.toml", "--out",
-                                (dir / "el").string(), "--checkpoint-every", "5"});
-    EXPECT_EQ(element.code, 2);
-    EXPECT_NE(element.err.find("boundary-value scenes only"), std::string::npos) << element.err;
-    const auto both = test::run_cli_captured(
-        {"run", box, "--out", (dir / "both").string(), "--checkpoint-every", "5", "--fields"});
-    EXPECT_EQ(both.code, 2);
-    EXPECT_NE(both.err.find("not supported yet"), std::string::npos) << both.err;
+    // Every kind writes checkpoints and removes them once complete.
+    const fs::path el = test::fresh_dir("resume-element");
+    ASSERT_EQ(test::run_cli_captured({"run", "scenes/element-hypo-oedometer.toml", "--out",
+                                      el.string(), "-q", "--checkpoint-every", "5"})
+                  .code,
+              0);
+    EXPECT_FALSE(fs::exists(el / "checkpoint"));
+    EXPECT_GT(test::summary(el)["checkpoints"]["written"].get<long>(), 0);
+    // A checkpoint whose scene is not DIR/scene.toml: refused, nothing changes.
+    const std::string el_history = test::read_text(el / "history.csv");
+    ElementTestCheckpoint c;
+    c.run.scene_text = "kind = \"element-test\"\n# another scene\n";
+    c.position.state = {-100.0, -100.0, -100.0, 0.0, 0.0, 0.0, 0.7};
+    write_element_test_checkpoint(el, c);
+    again = test::run_cli_captured({"resume", el.string()});
+    EXPECT_EQ(again.code, 2);
+    EXPECT_NE(again.err.find("is not the scene the checkpoint was written for"), std::string::npos)
+        << again.err;
+    EXPECT_EQ(test::read_text(el / "history.csv"), el_history);
 }
 
 } // namespace
