@@ -7,18 +7,11 @@
 #include <fmt/format.h>
 
 #include "engine/parallel_chunks.hpp"
+#include "fem/continuum_set_data.hpp"
 #include "fem/element_kernels.hpp"
 #include "fem/phase_timer.hpp"
 
 namespace ifsim::fem {
-
-struct ContinuumAssembly::SetData {
-    ElementSetMaterial spec;
-    std::unique_ptr<SetMaterial> material;
-    std::vector<int> elements;
-    std::vector<double> tangent;        // point * nc * nc
-    std::array<double*, 6> deps_cols{}; // stable: the increment columns are never swapped
-};
 
 ContinuumAssembly::ContinuumAssembly(const Mesh& mesh, std::vector<ElementSetMaterial> materials,
                                      const SolverSettings& settings, double& k0_seconds)
@@ -70,6 +63,14 @@ ContinuumAssembly::ContinuumAssembly(const Mesh& mesh, std::vector<ElementSetMat
     apply_k0(mesh.dim(), k0_seconds);
     if (settings_.integration == Integration::reduced) {
         hourglass_stiffness(ne);
+    }
+    if (settings_.kinematics == Kinematics::updated_lagrangian) {
+        reference_ = geom_;
+        configured_u_.assign(static_cast<std::size_t>(mesh.n_nodes() * mesh.dim()), 0.0);
+        increment_gradients_.assign(static_cast<std::size_t>(ne * geom_.nip) * 9, 0.0);
+        for (auto& s : sets_) {
+            s->rotations.assign(s->elements.size() * static_cast<std::size_t>(geom_.nip) * 9, 0.0);
+        }
     }
 }
 
@@ -212,11 +213,25 @@ void ContinuumAssembly::strains(const Mesh& mesh, std::span<const double> du) {
             strains_d<3>(mesh, du);
         }
         return;
+    case Kinematics::updated_lagrangian:
+        if (mesh.dim() == 2) {
+            strains_ul<2>(mesh, du);
+        } else {
+            strains_ul<3>(mesh, du);
+        }
+        return;
     }
 }
 
 bool ContinuumAssembly::update(std::string& error) {
     last_unreliable_ = 0;
+    if (!inverted_.empty()) {
+        error =
+            fmt::format("the increment inverts {} element(s), first element {} (det F <= 0 "
+                        "at an integration point)",
+                        inverted_.size(), *std::min_element(inverted_.begin(), inverted_.end()));
+        return false;
+    }
     for (auto& s : sets_) {
         const UpdateReport rep = s->material->update(settings_.update);
         counters_.constitutive_evaluations += static_cast<long>(rep.points);
@@ -319,6 +334,13 @@ void ContinuumAssembly::internal_force(const Mesh& mesh, const SparseSystem& sys
             internal_force_d<3>(mesh, system, u, du, f);
         }
         return;
+    case Kinematics::updated_lagrangian:
+        if (mesh.dim() == 2) {
+            internal_force_ul<2>(mesh, system, u, du, f);
+        } else {
+            internal_force_ul<3>(mesh, system, u, du, f);
+        }
+        return;
     }
 }
 
@@ -347,28 +369,42 @@ void ContinuumAssembly::tangent_d(const Mesh& mesh, SparseSystem& system,
                                              eu * Tr::n_hourglass * Tr::nen,
                                          hourglass_k_[eu], K);
             }
-            system.add_element_matrix(e, K.data());
-            if (coupling == nullptr) {
-                return;
-            }
-            // No two elements of a colour share an equation: the right-hand side needs no lock.
-            const auto eq = system.element_equations(e);
-            for (int b = 0; b < Tr::ndof; ++b) {
-                const auto node_dof = static_cast<std::size_t>(mesh.node(e, b / D) * D + b % D);
-                const double dp = coupling->prescribed_du[node_dof];
-                if (eq[static_cast<std::size_t>(b)] >= 0 || dp == 0.0) {
-                    continue;
-                }
-                for (int a = 0; a < Tr::ndof; ++a) {
-                    const int r = eq[static_cast<std::size_t>(a)];
-                    if (r >= 0) {
-                        coupling->rhs[static_cast<std::size_t>(r)] -= K(a, b) * dp;
-                    }
-                }
-            }
+            scatter_tangent<D>(mesh, system, coupling, e, K.data());
         });
     }
 }
+
+// The element matrix (column-major ndof x ndof) into the system; with a coupling the prescribed
+// columns times their increments into its right-hand side.
+template <int D>
+void ContinuumAssembly::scatter_tangent(const Mesh& mesh, SparseSystem& system,
+                                        PrescribedCoupling* coupling, int e, const double* K) {
+    constexpr int ndof = ElementTraits<D>::ndof;
+    system.add_element_matrix(e, K);
+    if (coupling == nullptr) {
+        return;
+    }
+    // No two elements of a colour share an equation: the right-hand side needs no lock.
+    const auto eq = system.element_equations(e);
+    for (int b = 0; b < ndof; ++b) {
+        const auto node_dof = static_cast<std::size_t>(mesh.node(e, b / D) * D + b % D);
+        const double dp = coupling->prescribed_du[node_dof];
+        if (eq[static_cast<std::size_t>(b)] >= 0 || dp == 0.0) {
+            continue;
+        }
+        for (int a = 0; a < ndof; ++a) {
+            const int r = eq[static_cast<std::size_t>(a)];
+            if (r >= 0) {
+                coupling->rhs[static_cast<std::size_t>(r)] -= K[b * ndof + a] * dp;
+            }
+        }
+    }
+}
+
+template void ContinuumAssembly::scatter_tangent<2>(const Mesh&, SparseSystem&, PrescribedCoupling*,
+                                                    int, const double*);
+template void ContinuumAssembly::scatter_tangent<3>(const Mesh&, SparseSystem&, PrescribedCoupling*,
+                                                    int, const double*);
 
 void ContinuumAssembly::tangent(const Mesh& mesh, SparseSystem& system,
                                 PrescribedCoupling* coupling) {
@@ -378,6 +414,13 @@ void ContinuumAssembly::tangent(const Mesh& mesh, SparseSystem& system,
             tangent_d<2>(mesh, system, coupling);
         } else {
             tangent_d<3>(mesh, system, coupling);
+        }
+        return;
+    case Kinematics::updated_lagrangian:
+        if (mesh.dim() == 2) {
+            tangent_ul<2>(mesh, system, coupling);
+        } else {
+            tangent_ul<3>(mesh, system, coupling);
         }
         return;
     }

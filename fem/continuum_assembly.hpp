@@ -4,13 +4,15 @@
 // turn a displacement increment into strain increments, stresses into internal forces and
 // material tangents into the global matrix.
 //
-// Kinematics seam: how displacements become strains and stresses become forces is chosen by
-// SolverSettings::kinematics. Small strain is the only choice today: the geometry is built
-// once from the reference configuration, strains are B du, forces B^T sigma dV and tangents
-// B^T D B dV (fem/element_kernels.hpp). A finite-strain variant (updated Lagrangian) adds its
-// case to strains(), internal_force() and tangent() with a geometry of the current
-// configuration and the objective stress rate; the material sets and the solver stay as they
-// are.
+// Kinematics (SolverSettings::kinematics): small strain builds the geometry once from the
+// reference configuration, strains are B du, forces B^T sigma dV and tangents B^T D B dV
+// (fem/element_kernels.hpp). Updated Lagrangian (fem/finite_strain.hpp) rebuilds the geometry
+// on the configuration of each increment's start (begin_increment), takes the strain increment
+// and spin of the midpoint configuration, turns the material points' start state with the
+// Hughes-Winget rotation (Zaremba-Jaumann rate), and forms forces and tangents from the first
+// Piola-Kirchhoff stress of the increment. Hourglass control acts on the total displacement
+// with the reference configuration's base vectors in both (a rigid rotation, linear in X, has
+// no hourglass part). A small-strain run calls none of the finite-strain code.
 
 #include <array>
 #include <memory>
@@ -51,6 +53,10 @@ public:
                       const SolverSettings& settings, double& k0_seconds);
     ~ContinuumAssembly();
 
+    // Updated Lagrangian: the geometry of the configuration X + u of the increment's start
+    // (rebuilt when u changed). Throws std::invalid_argument naming an inverted element.
+    // Nothing to do with small strain.
+    void begin_increment(const Mesh& mesh, std::span<const double> u);
     // Strain increments of every integration point from the displacement increment.
     void strains(const Mesh& mesh, std::span<const double> du);
     // Trial states from the strain increments; false (error names set, element and point)
@@ -83,6 +89,16 @@ private:
     template <int D>
     void strains_d(const Mesh& mesh, std::span<const double> du);
     template <int D>
+    void strains_ul(const Mesh& mesh, std::span<const double> du);
+    template <int D>
+    void internal_force_ul(const Mesh& mesh, const SparseSystem& system, std::span<const double> u,
+                           std::span<const double> du, std::vector<double>& f);
+    template <int D>
+    void tangent_ul(const Mesh& mesh, SparseSystem& system, PrescribedCoupling* coupling);
+    template <int D>
+    void scatter_tangent(const Mesh& mesh, SparseSystem& system, PrescribedCoupling* coupling,
+                         int e, const double* K);
+    template <int D>
     void internal_force_d(const Mesh& mesh, const SparseSystem& system, std::span<const double> u,
                           std::span<const double> du, std::vector<double>& f);
     template <int D>
@@ -93,7 +109,15 @@ private:
     std::size_t point_of(int element, int q) const;
 
     SolverSettings settings_;
-    ElementGeometry geom_;
+    ElementGeometry geom_; // small strain: the reference; updated Lagrangian: of the increment
+    // Updated Lagrangian: the reference geometry (hourglass base vectors), the displacement
+    // geom_ was built for, each point's increment gradient G (9 per point, row-major) and
+    // the elements whose increment inverts them (the update fails).
+    ElementGeometry reference_;
+    std::vector<double> configured_u_;
+    std::vector<double> increment_gradients_;
+    std::vector<int> inverted_;
+    std::vector<unsigned char> inverted_flags_; // per element, reused
     std::vector<std::unique_ptr<SetData>> sets_;
     std::vector<int> set_of_element_;
     std::vector<int> local_of_element_;

@@ -10,7 +10,7 @@ namespace ifsim::fem {
 namespace {
 
 template <int D>
-void build(const Mesh& mesh, ElementGeometry& g) {
+void build(const Mesh& mesh, ElementGeometry& g, const double* displacement) {
     using Tr = ElementTraits<D>;
     using S = Shape<Tr::type>;
     constexpr int nen = Tr::nen;
@@ -32,7 +32,7 @@ void build(const Mesh& mesh, ElementGeometry& g) {
     double grad[nen * D];
     double N[nen];
     for (int e = 0; e < ne; ++e) {
-        gather_coordinates(mesh, e, X);
+        gather_coordinates(mesh, e, X, displacement);
         double bbar[nen * D] = {};
         double V = 0.0;
         for (int q = 0; q < full.n; ++q) {
@@ -87,25 +87,29 @@ void build(const Mesh& mesh, ElementGeometry& g) {
 
 } // namespace
 
-void gather_coordinates(const Mesh& mesh, int element, double* X) {
+void gather_coordinates(const Mesh& mesh, int element, double* X, const double* displacement) {
     const int D = mesh.dim();
     for (int a = 0; a < mesh.nodes_per_element(); ++a) {
         const int n = mesh.node(element, a);
         for (int i = 0; i < D; ++i) {
             X[a * D + i] = mesh.coordinate(n, i);
+            if (displacement != nullptr) {
+                X[a * D + i] += displacement[n * D + i];
+            }
         }
     }
 }
 
-ElementGeometry build_geometry(const Mesh& mesh, Integration integration) {
+ElementGeometry build_geometry(const Mesh& mesh, Integration integration,
+                               const double* displacement) {
     ElementGeometry g;
     g.dim = mesh.dim();
     g.nen = mesh.nodes_per_element();
     g.integration = integration;
     if (g.dim == 2) {
-        build<2>(mesh, g);
+        build<2>(mesh, g, displacement);
     } else {
-        build<3>(mesh, g);
+        build<3>(mesh, g, displacement);
     }
     return g;
 }

@@ -36,10 +36,14 @@ struct ElementGeometry {
     double weight(int e, int q) const { return dV[static_cast<std::size_t>(e * nip + q)]; }
 };
 
-// Throws std::invalid_argument naming the element when det J <= 0 at a Gauss point.
-ElementGeometry build_geometry(const Mesh& mesh, Integration integration);
+// Throws std::invalid_argument naming the element when det J <= 0 at a Gauss point. With a
+// displacement vector (full DOF length) the geometry of the configuration X + u (updated
+// Lagrangian).
+ElementGeometry build_geometry(const Mesh& mesh, Integration integration,
+                               const double* displacement = nullptr);
 
-// Nodal coordinates of one element, node-major.
-void gather_coordinates(const Mesh& mesh, int element, double* X);
+// Nodal coordinates of one element, node-major (plus the displacements when given).
+void gather_coordinates(const Mesh& mesh, int element, double* X,
+                        const double* displacement = nullptr);
 
 } // namespace ifsim::fem

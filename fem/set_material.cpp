@@ -43,16 +43,18 @@ public:
         StateVec<double, N> s{};
         std::copy_n(y.begin(), N, s.begin());
         mp_.set_state(i, s);
+        if (kept_) {
+            kept_->set_state(i, s);
+        }
         lanes_stale_ = true;
     }
     void set_stress(std::size_t i, const Sym<double>& s) override {
-        auto y = mp_.state(i);
+        auto y = committed_state(i);
         ifsim::set_stress(y, s);
-        mp_.set_state(i, y);
-        lanes_stale_ = true;
+        set_state(i, std::span<const double>(y.data(), N));
     }
     std::vector<double> state(std::size_t i) const override {
-        const auto y = mp_.state(i);
+        const auto y = committed_state(i);
         return {y.begin(), y.end()};
     }
     std::vector<double> trial_state(std::size_t i) const override {
@@ -61,7 +63,9 @@ public:
     }
     double* deps(int j) override { return mp_.deps(j); }
     const double* trial(int k) const override { return mp_.trial(k); }
-    const double* committed(int k) const override { return mp_.committed(k); }
+    const double* committed(int k) const override {
+        return kept_ ? kept_->committed(k) : mp_.committed(k);
+    }
 
     UpdateReport update(const UpdateOptions& options) override {
         return batched_update(mp_, params_, options);
@@ -128,7 +132,7 @@ public:
     }
 
     double shear_modulus(std::size_t i, const UpdateOptions& options) const override {
-        const auto y = mp_.state(i);
+        const auto y = committed_state(i);
         const auto cols =
             M::template rate_stiffness<double>(params_, options.settings, y, voigt::zero<double>());
         return (cols[3][3] + cols[4][4] + cols[5][5]) / 6.0; // d sigma_12 / d eps_12 = 2G
@@ -136,10 +140,89 @@ public:
 
     void commit() override {
         mp_.commit();
+        if (kept_) { // the new committed state is kept unturned for the next increment
+            for (int k = 0; k < N; ++k) {
+                std::copy_n(mp_.committed(k), mp_.padded(), kept_->committed(k));
+            }
+        }
+        lanes_stale_ = true;
+    }
+
+    void rotate_start(const double* rotations) override {
+        if (!kept_) {
+            kept_.emplace(mp_.size());
+            for (int k = 0; k < N; ++k) {
+                std::copy_n(mp_.committed(k), mp_.padded(), kept_->committed(k));
+            }
+        }
+        for_points(mp_.size(), [&](std::size_t i) {
+            const double* r = rotations + 9 * i;
+            for (int offset : tensor_offsets) {
+                double s[3][3];
+                const double* v[6];
+                for (int j = 0; j < 6; ++j) {
+                    v[j] = kept_->committed(offset + j) + i;
+                }
+                s[0][0] = *v[0];
+                s[1][1] = *v[1];
+                s[2][2] = *v[2];
+                s[0][1] = s[1][0] = *v[3];
+                s[0][2] = s[2][0] = *v[4];
+                s[1][2] = s[2][1] = *v[5];
+                double rs[3][3] = {};
+                for (int a = 0; a < 3; ++a) {
+                    for (int b = 0; b < 3; ++b) {
+                        for (int c = 0; c < 3; ++c) {
+                            rs[a][b] += r[3 * a + c] * s[c][b];
+                        }
+                    }
+                }
+                double t[3][3] = {};
+                for (int a = 0; a < 3; ++a) {
+                    for (int b = 0; b < 3; ++b) {
+                        for (int c = 0; c < 3; ++c) {
+                            t[a][b] += rs[a][c] * r[3 * b + c];
+                        }
+                    }
+                }
+                const double out[6] = {t[0][0], t[1][1], t[2][2], t[0][1], t[0][2], t[1][2]};
+                for (int j = 0; j < 6; ++j) {
+                    mp_.committed(offset + j)[i] = out[j];
+                }
+            }
+            for (int k = 0; k < N; ++k) { // scalars (void ratio, ...) as committed
+                if (!is_tensor_entry(k)) {
+                    mp_.committed(k)[i] = kept_->committed(k)[i];
+                }
+            }
+        });
         lanes_stale_ = true;
     }
 
 private:
+    // The model state's symmetric tensors: the stress and every history block of six
+    // (kernels/model_api.hpp: stress 0..5, void ratio 6, blocks from 7).
+    static constexpr auto tensor_offsets = [] {
+        constexpr std::size_t n = ModelEntry<M>::history_prefixes.size();
+        static_assert(7 + 6 * static_cast<int>(n) == N, "history blocks of six after e");
+        std::array<int, n + 1> out{};
+        for (std::size_t k = 0; k <= n; ++k) {
+            out[k] = k == 0 ? 0 : 7 + 6 * static_cast<int>(k - 1);
+        }
+        return out;
+    }();
+    static constexpr bool is_tensor_entry(int k) {
+        for (int offset : tensor_offsets) {
+            if (k >= offset && k < offset + 6) {
+                return true;
+            }
+        }
+        return false;
+    }
+    StateVec<double, N> committed_state(std::size_t i) const {
+        return kept_ ? kept_->state(i) : mp_.state(i);
+    }
+
     void rate_tangent(std::size_t i, std::span<const int> comps, const UpdateOptions& options,
                       double* out) const {
         const std::size_t nc = comps.size();
@@ -147,6 +230,7 @@ private:
         for (int j = 0; j < 6; ++j) {
             d[j] = mp_.deps(j)[i];
         }
+        // At the (turned) start of the update, as the perturbation lanes.
         const auto cols =
             M::template rate_stiffness<double>(params_, options.settings, mp_.state(i), d);
         double* Di = out + i * nc * nc;
@@ -160,8 +244,11 @@ private:
     typename M::Params params_;
     MaterialPoints<M> mp_;
     std::optional<MaterialPoints<M>> lanes_; // base + perturbed lanes of every point
-    std::vector<double> delta_;              // perturbation of each point
-    std::vector<unsigned char> fell_back_;   // per point: rate stiffness used
+    // Updated Lagrangian only: the committed state, unturned, while mp_'s committed columns
+    // hold the turned start of the running increment.
+    std::optional<MaterialPoints<M>> kept_;
+    std::vector<double> delta_;            // perturbation of each point
+    std::vector<unsigned char> fell_back_; // per point: rate stiffness used
     bool lanes_stale_ = true;
 };
 

@@ -67,6 +67,13 @@ public:
     virtual double shear_modulus(std::size_t i, const UpdateOptions& options) const = 0;
     // Accept the trial states (swap).
     virtual void commit() = 0;
+
+    // Updated Lagrangian (fem/finite_strain.hpp): the next update() integrates from the
+    // committed state with its tensors (stress and every history block) turned by the
+    // rotation of each point (9 values per point, row-major R: y' = R y R^T). The committed
+    // state itself is kept: state() and committed() still give it, and the next call turns
+    // it again. A set whose start is never turned runs none of this.
+    virtual void rotate_start(const double* rotations) = 0;
 };
 
 std::unique_ptr<SetMaterial> make_set_material(const MaterialChoice& material, std::size_t points);

@@ -39,8 +39,10 @@ struct ElementSetMaterial {
 
 enum class Predictor { extrapolated, tangent, zero };
 
-// How displacements become strains and stresses become forces (fem/continuum_assembly.hpp).
-enum class Kinematics { small_strain };
+// How displacements become strains and stresses become forces (fem/continuum_assembly.hpp):
+// small strain on the reference configuration, or updated Lagrangian with the Zaremba-Jaumann
+// rate (fem/finite_strain.hpp).
+enum class Kinematics { small_strain, updated_lagrangian };
 
 struct SolverSettings {
     Kinematics kinematics = Kinematics::small_strain;

@@ -32,6 +32,12 @@ std::string residual_trace(const std::vector<double>& residuals) {
 // floor) with the in-plane targets settled. Nothing is committed here.
 bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& info,
                                    std::string& error, const IncrementCallback& on_iteration) {
+    try { // updated Lagrangian: the geometry of the converged configuration
+        continuum_->begin_increment(mesh_, u_);
+    } catch (const std::invalid_argument& e) {
+        error = e.what();
+        return false;
+    }
     if (!contacts_.empty()) {
         begin_contacts(false);
     }

@@ -24,11 +24,13 @@ std::string quoted_list(const std::vector<std::string>& names) {
 } // namespace
 
 MeshSpec read_mesh_spec(const TableReader& t) {
-    t.allow_only({"dimension", "integration", "file"});
+    t.allow_only({"dimension", "integration", "file", "kinematics"});
     MeshSpec spec;
     spec.dimension = static_cast<int>(t.integer("dimension", 2, 3));
     spec.integration = t.choice_or("integration", "full", {"full", "reduced"});
     spec.rule = spec.integration == "full" ? fem::Integration::full : fem::Integration::reduced;
+    spec.kinematics =
+        t.choice_or("kinematics", "small-strain", {"small-strain", "updated-lagrangian"});
     if (t.has("file")) {
         spec.file = t.string("file");
         if (spec.file.empty()) {

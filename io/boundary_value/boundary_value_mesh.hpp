@@ -30,6 +30,7 @@ struct MeshSpec {
     int dimension = 2;
     std::string integration; // full | reduced
     fem::Integration rule = fem::Integration::full;
+    std::string kinematics = "small-strain"; // small-strain | updated-lagrangian
     std::string file;           // as written; empty for [[body]] blocks
     std::filesystem::path path; // file resolved against the scene file's folder
 };

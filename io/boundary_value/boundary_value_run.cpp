@@ -313,6 +313,7 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     d["effects"] = boundary_value_effects(scene);
     d["mesh"] = {{"dimension", scene.mesh_spec.dimension},
                  {"integration", scene.mesh_spec.integration},
+                 {"kinematics", scene.mesh_spec.kinematics},
                  {"bodies", scene.bodies.size()},
                  {"nodes", run.nodes},
                  {"elements", run.elements},

@@ -231,6 +231,9 @@ BoundaryValueScene read_boundary_value_scene(const toml::table& table, const std
     const TableReader mesh = root.table("mesh");
     scene.mesh_spec = read_mesh_spec(mesh);
     scene.settings.integration = scene.mesh_spec.rule;
+    scene.settings.kinematics = scene.mesh_spec.kinematics == "updated-lagrangian"
+                                    ? fem::Kinematics::updated_lagrangian
+                                    : fem::Kinematics::small_strain;
 
     const TableReader material = root.table("material");
     const std::vector<std::string> names = material.keys();

@@ -110,6 +110,9 @@ TEST(BoundaryValueScene, BadInputNamesFileAndKey) {
         test::replaced(text, "soil_top = \"soil.top\"",
                        "soil_top = \"soil.top\"\ntraction_faces = \"soil.bottom\""),
         "output.traction_faces", "without [interface]");
+    test::expect_boundary_value_error(
+        test::replaced(text, "dimension = 2", "dimension = 2\nkinematics = \"large\""),
+        "mesh.kinematics", "\"updated-lagrangian\"");
     // A state key checked at parse time with the soil's stress: |h| > R.
     test::expect_boundary_value_error(
         test::replaced(text, "intergranular_strain = [0.0, 0.0, 0.0, 7.0710678e-5, 0.0, 0.0]",
@@ -174,6 +177,30 @@ TEST(BoundaryValueRun, ShortRunWritesHistoryAndSummary) {
     EXPECT_GT(s["counters"]["contact_evaluations"].get<long>(), 0);
     EXPECT_EQ(s["mesh"]["equations"], 3); // top y, bottom x, bottom y (ties)
     EXPECT_GE(s["iterations_per_increment"]["max"].get<int>(), 1);
+}
+
+// [mesh] kinematics reaches the solver and the summary; the same short shear with updated
+// Lagrangian differs from small strain only by the small strains of the soil.
+TEST(BoundaryValueRun, UpdatedLagrangianIsAnEffectTheSceneAsksFor) {
+    const fs::path small = test::fresh_dir("bv-small-strain");
+    const fs::path ul = test::fresh_dir("bv-updated-lagrangian");
+    const std::vector<std::string> shear = {"--set", "stage.2.steps=5", "--set",
+                                            "stage.2.displacement.1.change=0.00015"};
+    std::vector<std::string> a = {"run", cnl_2d, "--out", small.string()};
+    a.insert(a.end(), shear.begin(), shear.end());
+    ASSERT_EQ(run(a), 0);
+    std::vector<std::string> b = {"run", cnl_2d, "--out", ul.string(), "--set",
+                                  "mesh.kinematics=\"updated-lagrangian\""};
+    b.insert(b.end(), shear.begin(), shear.end());
+    ASSERT_EQ(run(b), 0);
+    EXPECT_EQ(summary(small)["effects"]["kinematics"], "small-strain");
+    EXPECT_EQ(summary(ul)["effects"]["kinematics"], "updated-lagrangian");
+    EXPECT_EQ(summary(ul)["mesh"]["kinematics"], "updated-lagrangian");
+    const History hs = read_history(small);
+    const History hu = read_history(ul);
+    const double ts = hs.number(6, "t_t1"), tu = hu.number(6, "t_t1");
+    EXPECT_NE(ts, tu);
+    EXPECT_NEAR(tu, ts, 1e-2 * std::abs(ts));
 }
 
 TEST(BoundaryValueRun, NoContactNoGravityNoK0CostsNothing) {
