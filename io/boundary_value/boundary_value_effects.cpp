@@ -39,10 +39,14 @@ nlohmann::ordered_json boundary_value_effects(const BoundaryValueScene& scene) {
         pressures = pressures || !st.pressures.empty();
     }
     const FieldSchedule& f = scene.output.fields;
-    return {{"kinematics", scene.mesh_spec.kinematics}, {"dimension", scene.mesh_spec.dimension},
-            {"materials", materials},       {"contact_pairs", contacts},
-            {"gravity", gravity},           {"pressures", pressures},
-            {"springs", springs},           {"fields", f.enabled()},
+    return {{"kinematics", scene.mesh_spec.kinematics},
+            {"dimension", scene.mesh_spec.dimension},
+            {"materials", materials},
+            {"contact_pairs", contacts},
+            {"gravity", gravity},
+            {"pressures", pressures},
+            {"springs", springs},
+            {"fields", f.enabled()},
             {"checkpoints", false}};
 }
 

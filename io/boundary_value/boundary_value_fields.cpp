@@ -9,8 +9,8 @@
 #include <fmt/format.h>
 
 #include "engine/model_registry.hpp"
-#include "fem/shape_functions.hpp"
 #include "io/boundary_value/boundary_value_scene.hpp"
+#include "io/boundary_value/pair_frame.hpp"
 #include "io/output/run_clock.hpp"
 
 namespace ifsim::io {
@@ -44,17 +44,6 @@ std::string block_name(std::string_view prefix) {
         return "back_stress_at_reversal";
     }
     return fmt::format("state_{}", prefix);
-}
-
-// Shape function values of the mesh's element type at natural coordinates xi.
-std::array<double, 8> shape_values(fem::ElementType type, const std::array<double, 3>& xi) {
-    std::array<double, 8> N{};
-    if (type == fem::ElementType::quad4) {
-        fem::Shape<fem::ElementType::quad4>::values(xi.data(), N.data());
-    } else {
-        fem::Shape<fem::ElementType::hex8>::values(xi.data(), N.data());
-    }
-    return N;
 }
 
 std::string file_stem(long increment) {
@@ -278,8 +267,6 @@ VtuGrid FieldOutput::mesh_grid(const fem::StaticSolver& solver) const {
 VtuGrid FieldOutput::contact_grid(const fem::StaticSolver& solver,
                                   const fem::ContactPair& pair) const {
     const fem::Mesh& mesh = solver.mesh();
-    const int D = mesh.dim();
-    const int nen = mesh.nodes_per_element();
     const std::vector<double>& u = solver.displacement();
     const std::vector<fem::ContactPointRecord> records = pair.point_records();
     VtuGrid g;
@@ -298,16 +285,8 @@ VtuGrid FieldOutput::contact_grid(const fem::StaticSolver& solver,
         const fem::ContactPointRecord& r = records[i];
         // Reference position and displacement of the slave point (shape functions of its
         // element), so that the points sit on the mesh file's surface.
-        const auto N = shape_values(mesh.type, r.natural);
-        std::array<double, 3> x{}, ux{};
-        for (int a = 0; a < nen && r.slave_element >= 0; ++a) {
-            const auto node = static_cast<std::size_t>(mesh.node(r.slave_element, a));
-            for (int d = 0; d < D; ++d) {
-                x[static_cast<std::size_t>(d)] +=
-                    N[static_cast<std::size_t>(a)] * mesh.coordinates[node * D + d];
-                ux[static_cast<std::size_t>(d)] += N[static_cast<std::size_t>(a)] * u[node * D + d];
-            }
-        }
+        const Vec3 x = contact_point_position(mesh, r);
+        const Vec3 ux = contact_point_position(mesh, r, u.data());
         g.points.insert(g.points.end(), x.begin(), x.end());
         g.connectivity.push_back(static_cast<std::int64_t>(i));
         g.offsets.push_back(static_cast<std::int64_t>(i + 1));

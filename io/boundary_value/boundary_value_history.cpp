@@ -8,16 +8,10 @@ namespace ifsim::io {
 
 namespace {
 
-using Vec3 = std::array<double, 3>;
-
 // sigma n with a Voigt stress (tensor shear components).
 Vec3 traction(const fem::Voigt6& s, const Vec3& n) {
     return {s[0] * n[0] + s[3] * n[1] + s[4] * n[2], s[3] * n[0] + s[1] * n[1] + s[5] * n[2],
             s[4] * n[0] + s[5] * n[1] + s[2] * n[2]};
-}
-
-double dot(const Vec3& a, const Vec3& b) {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
 void optional_real(HistoryWriter& out, const std::optional<double>& v) {
@@ -38,10 +32,14 @@ std::vector<std::string> boundary_value_history_columns(const BoundaryValueScene
                                     "band_thickness", "e_interface"};
     if (scene.contacts.size() > 1) {
         for (const BoundaryValueInterface& c : scene.contacts) {
-            for (const char* column : {"t_n", "t_t1", "t_t2", "closed_points"}) {
+            for (const char* column : {"t_n", "t_t1", "t_t2", "closed_points", "u_n", "u_t1",
+                                       "u_t2", "F_n", "F_t1", "F_t2"}) {
                 out.push_back(c.pair.name + "." + column);
             }
         }
+    }
+    for (const std::string& c : recorder_columns(scene.recorders)) {
+        out.push_back(c);
     }
     return out;
 }
@@ -69,6 +67,12 @@ void write_boundary_value_row(HistoryWriter& out, const BoundaryValueRow& r) {
         out.real(p.t_t1);
         out.real(p.t_t2);
         out.integer(p.closed_points);
+        for (double v : {p.u_n, p.u_t1, p.u_t2, p.F_n, p.F_t1, p.F_t2}) {
+            out.real(v);
+        }
+    }
+    for (const auto& v : r.recorders) {
+        optional_real(out, v);
     }
     out.end_row();
 }
@@ -79,41 +83,75 @@ BoundaryValueProbe::BoundaryValueProbe(const BoundaryValueScene& scene)
       geometry_(face_set_geometry(scene.mesh, faces_)),
       plate_(scene.mesh.node_set(scene.output.plate)),
       soil_top_(scene.mesh.node_set(scene.output.soil_top)),
-      face_nodes_(scene.mesh.nodes_of_faces(faces_)) {
+      face_nodes_(scene.mesh.nodes_of_faces(faces_)),
+      recorders_(scene.recorders, scene.mesh, scene.contacts) {
+    if (main_ != nullptr) {
+        frame_ = pair_frame(scene.mesh, faces_, main_->pair.shear_direction);
+    } else {
+        frame_ = {geometry_.normal, {1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}};
+    }
     if (scene.contacts.size() > 1) {
         for (const BoundaryValueInterface& c : scene.contacts) {
             pair_geometry_.push_back(face_set_geometry(scene.mesh, c.pair.slave_faces));
+            pair_frames_.push_back(
+                pair_frame(scene.mesh, c.pair.slave_faces, c.pair.shear_direction));
+            pair_slave_nodes_.push_back(scene.mesh.nodes_of_faces(c.pair.slave_faces));
+            pair_master_nodes_.push_back(scene.mesh.nodes_of_faces(c.pair.master_faces));
         }
     }
 }
 
-double BoundaryValueProbe::mean(const fem::StaticSolver& solver, const std::vector<int>& nodes,
-                                int d) const {
+Vec3 BoundaryValueProbe::mean(const fem::StaticSolver& solver,
+                              const std::vector<int>& nodes) const {
     const auto& u = solver.displacement();
-    double sum = 0.0;
-    for (int n : nodes) {
-        sum += u[static_cast<std::size_t>(n * dim_ + d)];
+    Vec3 out{};
+    for (int d = 0; d < dim_; ++d) {
+        double sum = 0.0;
+        for (int n : nodes) {
+            sum += u[static_cast<std::size_t>(n * dim_ + d)];
+        }
+        out[static_cast<std::size_t>(d)] =
+            nodes.empty() ? 0.0 : sum / static_cast<double>(nodes.size());
     }
-    return nodes.empty() ? 0.0 : sum / static_cast<double>(nodes.size());
+    return out;
 }
 
-void BoundaryValueProbe::measure(const fem::StaticSolver& solver, BoundaryValueRow& row) const {
-    const int v = dim_ - 1;
-    row.u_t1 = mean(solver, plate_, 0) - mean(solver, soil_top_, 0);
-    row.u_t2 = dim_ == 3 ? mean(solver, plate_, 1) - mean(solver, soil_top_, 1) : 0.0;
-    row.u_n = mean(solver, soil_top_, v) - mean(solver, plate_, v);
+void BoundaryValueProbe::measure(const fem::StaticSolver& solver, BoundaryValueRow& row) {
+    row.recorders = recorders_.measure(solver);
+    const Vec3 plate = mean(solver, plate_);
+    const Vec3 top = mean(solver, soil_top_);
     if (main_ != nullptr) {
+        // In the main pair's frame (a shear box with shear along +x: x, y and vertical).
+        const Vec3 rel{plate[0] - top[0], plate[1] - top[1], plate[2] - top[2]};
+        row.u_t1 = dot(rel, frame_.t1);
+        row.u_t2 = dim_ == 3 ? dot(rel, frame_.t2) : 0.0;
+        row.u_n = dot(rel, frame_.n) + 0.0; // + 0.0: never -0 in the file
         const auto& pairs = solver.contacts();
         if (scene_.contacts.size() > 1) {
-            for (const auto& p : pairs) {
-                const fem::ContactResultant r = p->resultant();
-                row.pairs.push_back({r.t_N, r.shear[0], dim_ == 3 ? r.shear[1] : 0.0, r.closed});
+            for (std::size_t k = 0; k < pairs.size(); ++k) {
+                const fem::ContactResultant r = pairs[k]->resultant();
+                const PairFrame& f = pair_frames_[k];
+                PairTractions p;
+                p.t_n = r.t_N;
+                p.t_t1 = dot(r.shear, f.t1);
+                p.t_t2 = dim_ == 3 ? dot(r.shear, f.t2) : 0.0;
+                p.closed_points = r.closed;
+                const Vec3 m = mean(solver, pair_master_nodes_[k]);
+                const Vec3 sl = mean(solver, pair_slave_nodes_[k]);
+                const Vec3 d{m[0] - sl[0], m[1] - sl[1], m[2] - sl[2]};
+                p.u_n = dot(d, f.n) + 0.0;
+                p.u_t1 = dot(d, f.t1) + 0.0;
+                p.u_t2 = dim_ == 3 ? dot(d, f.t2) + 0.0 : 0.0;
+                p.F_n = r.area * p.t_n;
+                p.F_t1 = r.area * p.t_t1;
+                p.F_t2 = r.area * p.t_t2;
+                row.pairs.push_back(p);
             }
         }
         const fem::ContactResultant r = pairs.at(scene_.output.contact)->resultant();
         row.t_n = r.t_N;
-        row.t_t1 = r.shear[0];
-        row.t_t2 = dim_ == 3 ? r.shear[1] : 0.0;
+        row.t_t1 = dot(r.shear, frame_.t1);
+        row.t_t2 = dim_ == 3 ? dot(r.shear, frame_.t2) : 0.0;
         row.closed_points = r.closed;
         if (!main_->formulation.is_coulomb()) {
             row.s_p1 = r.sigma_p1;
@@ -124,6 +162,10 @@ void BoundaryValueProbe::measure(const fem::StaticSolver& solver, BoundaryValueR
         }
         return;
     }
+    const int v = dim_ - 1;
+    row.u_t1 = plate[0] - top[0];
+    row.u_t2 = dim_ == 3 ? plate[1] - top[1] : 0.0;
+    row.u_n = top[static_cast<std::size_t>(v)] - plate[static_cast<std::size_t>(v)];
     // The reactions on the faces' nodes: the force the surroundings exert on the soil.
     const auto& f_int = solver.internal_force();
     const auto& f_ext = solver.external_force();
@@ -144,6 +186,7 @@ void BoundaryValueProbe::measure(const fem::StaticSolver& solver, BoundaryValueR
 PairTractions BoundaryValueProbe::initial_tractions(const fem::StaticSolver& solver,
                                                     const std::string& faces,
                                                     const FaceGeometry& geometry,
+                                                    const PairFrame& frame,
                                                     fem::Voigt6& mean_stress) const {
     // Area-weighted mean of sigma n over the faces, sigma the mean of each face's element.
     Vec3 t{};
@@ -169,14 +212,19 @@ PairTractions BoundaryValueProbe::initial_tractions(const fem::StaticSolver& sol
     const Vec3& n = geometry.normal;
     PairTractions out;
     out.t_n = dot(t, n);
-    out.t_t1 = t[0] - out.t_n * n[0];
-    out.t_t2 = dim_ == 3 ? t[1] - out.t_n * n[1] : 0.0;
+    const Vec3 shear{t[0] - out.t_n * n[0], t[1] - out.t_n * n[1], t[2] - out.t_n * n[2]};
+    out.t_t1 = dot(shear, frame.t1);
+    out.t_t2 = dim_ == 3 ? dot(shear, frame.t2) : 0.0;
+    out.F_n = geometry.area * out.t_n;
+    out.F_t1 = geometry.area * out.t_t1;
+    out.F_t2 = geometry.area * out.t_t2;
     return out;
 }
 
 void BoundaryValueProbe::initial(const fem::StaticSolver& solver, BoundaryValueRow& row) const {
+    row.recorders = recorders_.initial();
     fem::Voigt6 mean_stress{};
-    const PairTractions main = initial_tractions(solver, faces_, geometry_, mean_stress);
+    const PairTractions main = initial_tractions(solver, faces_, geometry_, frame_, mean_stress);
     row.t_n = main.t_n;
     row.t_t1 = main.t_t1;
     row.t_t2 = main.t_t2;
@@ -187,32 +235,21 @@ void BoundaryValueProbe::initial(const fem::StaticSolver& solver, BoundaryValueR
     for (std::size_t k = 0; k < pair_geometry_.size(); ++k) {
         fem::Voigt6 unused{};
         row.pairs.push_back(initial_tractions(solver, scene_.contacts[k].pair.slave_faces,
-                                              pair_geometry_[k], unused));
+                                              pair_geometry_[k], pair_frames_[k], unused));
     }
     const BoundaryValueInterface& bi = *main_;
     if (bi.formulation.is_coulomb()) {
         return;
     }
+    // The interface's start in the contact's frame (sigma_p2 is a normal component: the sense
+    // of t2 does not matter).
     const Vec3& n = geometry_.normal;
-    // The interface's start in the contact's frame: t1 along the shear direction in the plane.
-    const auto& dir = bi.pair.shear_direction;
-    Vec3 t1{dir[0], dir[1], dim_ == 2 ? 0.0 : dir[2]};
-    const double dn = dot(t1, n);
-    for (std::size_t d = 0; d < 3; ++d) {
-        t1[d] -= dn * n[d];
-    }
-    const double len = std::sqrt(dot(t1, t1));
-    for (double& c : t1) {
-        c = len > 0.0 ? c / len : 0.0;
-    }
-    const Vec3 t2{n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2],
-                  n[0] * t1[1] - n[1] * t1[0]};
     const auto normal_of = [&](const Vec3& a) { return dot(a, traction(mean_stress, a)); };
     const fem::Voigt6 local{normal_of(n),
-                            normal_of(t1),
-                            normal_of(t2),
-                            dot(t1, traction(mean_stress, n)),
-                            dot(t2, traction(mean_stress, n)),
+                            normal_of(frame_.t1),
+                            normal_of(frame_.t2),
+                            dot(frame_.t1, traction(mean_stress, n)),
+                            dot(frame_.t2, traction(mean_stress, n)),
                             0.0};
     const std::vector<double> y = bi.pair.initial_state(local);
     row.s_p1 = y[1];

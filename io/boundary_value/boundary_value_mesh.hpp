@@ -31,8 +31,8 @@ struct MeshSpec {
     std::string integration; // full | reduced
     fem::Integration rule = fem::Integration::full;
     std::string kinematics = "small-strain"; // small-strain | updated-lagrangian
-    std::string file;           // as written; empty for [[body]] blocks
-    std::filesystem::path path; // file resolved against the scene file's folder
+    std::string file;                        // as written; empty for [[body]] blocks
+    std::filesystem::path path;              // file resolved against the scene file's folder
 };
 
 // [mesh]. Throws SceneError.

@@ -102,15 +102,16 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
     ProgressLine line(progress, scene.total_steps(), static_cast<int>(scene.stages.size()));
     std::unique_ptr<fem::StaticSolver> solver;
     std::optional<FieldOutput> fields; // only when the scene asks: no field code runs otherwise
+    std::optional<BoundaryValueProbe> probe;
     try {
         const auto t0 = Clock::now();
         solver = make_solver(scene, simd);
         out.setup_seconds = since(t0);
-        const BoundaryValueProbe probe(scene);
+        probe.emplace(scene);
         if (!resume) {
             const auto t1 = Clock::now();
             BoundaryValueRow row;
-            probe.initial(*solver, row);
+            probe->initial(*solver, row);
             write_boundary_value_row(history, row);
             out.row_seconds += since(t1);
         }
@@ -145,7 +146,7 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
                 row.newton_iterations = static_cast<int>(info.corrections.size());
                 row.cuts = info.cut_depth;
                 row.residual = info.residuals.empty() ? 0.0 : info.residuals.back();
-                probe.measure(*solver, row);
+                probe->measure(*solver, row);
                 write_boundary_value_row(history, row);
                 out.iterations.push_back(row.newton_iterations);
 
@@ -223,6 +224,9 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
         out.field_outputs = fields->outputs();
         out.field_seconds = fields->seconds();
         out.field_times_unreached = fields->unreached_times();
+    }
+    if (probe) {
+        out.point_recorders = probe->recorders().chosen_points();
     }
     if (solver) {
         out.counters = solver->counters();
@@ -365,7 +369,11 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     d["stages"] = scene.stages.size();
     d["steps"] = scene.total_steps();
     d["rows"] = run.rows;
-    d["columns"] = describe_columns("boundary-value", boundary_value_history_columns(scene));
+    d["columns"] = describe_columns("boundary-value", boundary_value_history_columns(scene),
+                                    recorder_descriptions(scene.recorders));
+    if (!scene.recorders.points.empty()) {
+        d["point_recorders"] = run.point_recorders;
+    }
     d["outputs"] = {HistoryWriter::file_name};
     if (scene.output.fields.enabled()) {
         const FieldSchedule& f = scene.output.fields;

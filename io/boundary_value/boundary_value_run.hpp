@@ -36,6 +36,7 @@ struct BoundaryValueRunOutcome {
     std::vector<std::string> field_collections; // .pvd files relative to DIR
     std::vector<std::string> field_materials;   // names of the cell array `material`
     std::vector<double> field_times_unreached;  // named times after the run's last increment
+    nlohmann::ordered_json point_recorders;     // the points the point recorders chose
     long checkpoints = 0;                       // checkpoints written by this run
     double checkpoint_seconds = 0.0;
 };

@@ -1,11 +1,14 @@
 #include "io/boundary_value/boundary_value_scene.hpp"
 
 #include <cmath>
-#include <fmt/format.h>
 #include <optional>
+#include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "io/boundary_value/boundary_value_region.hpp"
 #include "io/boundary_value/boundary_value_stage.hpp"
+#include "io/boundary_value/pair_frame.hpp"
 #include "io/scene/table_reader.hpp"
 
 namespace ifsim::io {
@@ -53,18 +56,6 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
     s.predictor = scene.predictor == "tangent" ? fem::Predictor::tangent
                   : scene.predictor == "zero"  ? fem::Predictor::zero
                                                : fem::Predictor::extrapolated;
-}
-
-std::string node_set(const TableReader& t, std::string_view key, const fem::Mesh& mesh) {
-    const std::string name = t.string(key);
-    if (!mesh.node_sets.contains(name)) {
-        std::string list;
-        for (const auto& [n, nodes] : mesh.node_sets) {
-            list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", n);
-        }
-        t.fail(key, fmt::format("expected a node set of the mesh: {}; got \"{}\"", list, name));
-    }
-    return name;
 }
 
 // [output] contact: the name of a pair; the first pair by default.
@@ -131,8 +122,8 @@ BoundaryValueOutput read_output(const TableReader& t, const fem::Mesh& mesh,
     t.allow_only({"plate", "soil_top", "traction_faces", "contact", "fields"});
     BoundaryValueOutput out;
     out.fields = read_fields(t);
-    out.plate = node_set(t, "plate", mesh);
-    out.soil_top = node_set(t, "soil_top", mesh);
+    out.plate = read_node_set(t, "plate", mesh);
+    out.soil_top = read_node_set(t, "soil_top", mesh);
     out.contact = main_contact(t, contacts);
     if (!contacts.empty()) {
         if (t.has("traction_faces")) {
@@ -200,6 +191,18 @@ void read_mesh_file_and_regions(const TableReader& root, const TableReader& mesh
 
 } // namespace
 
+std::string read_node_set(const TableReader& t, std::string_view key, const fem::Mesh& mesh) {
+    const std::string name = t.string(key);
+    if (!mesh.node_sets.contains(name)) {
+        std::string list;
+        for (const auto& [n, nodes] : mesh.node_sets) {
+            list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", n);
+        }
+        t.fail(key, fmt::format("expected a node set of the mesh: {}; got \"{}\"", list, name));
+    }
+    return name;
+}
+
 const BoundaryValueInterface* BoundaryValueScene::main_contact() const {
     return contacts.empty() ? nullptr : &contacts.at(output.contact);
 }
@@ -223,7 +226,7 @@ std::vector<fem::ElementSetMaterial> BoundaryValueScene::set_materials() const {
 BoundaryValueScene read_boundary_value_scene(const toml::table& table, const std::string& file) {
     const TableReader root(table, file, "");
     root.allow_only({"kind", "description", "mesh", "body", "region", "material", "interface",
-                     "contact", "solver", "output", "stage"});
+                     "contact", "solver", "output", "recorder", "stage"});
     BoundaryValueScene scene;
     if (root.has("description")) {
         scene.description = root.string("description");
@@ -247,8 +250,20 @@ BoundaryValueScene read_boundary_value_scene(const toml::table& table, const std
     }
 
     scene.contacts = read_boundary_value_contacts(root, scene.mesh, scene.materials);
+    for (std::size_t k = 0; k < scene.contacts.size(); ++k) {
+        const fem::ContactPairSpec& pair = scene.contacts[k].pair;
+        try { // history.csv measures each pair in its frame (pair_frame.hpp)
+            (void)pair_frame(scene.mesh, pair.slave_faces, pair.shear_direction);
+        } catch (const std::invalid_argument& e) {
+            root.fail(
+                root.has("interface") ? std::string("interface.shear_direction")
+                                      : fmt::format("contact.{}.shear_direction", k + 1),
+                fmt::format("a direction with a part in the plane of the faces ({})", e.what()));
+        }
+    }
     read_solver(root, scene);
     scene.output = read_output(root.table("output"), scene.mesh, scene.contacts);
+    scene.recorders = read_recorders(root, scene.mesh, scene.contacts);
     int number = 1;
     for (const TableReader& st : root.array_of_tables("stage")) {
         scene.stages.push_back(read_boundary_value_stage(st, scene.mesh, number++));

@@ -18,7 +18,9 @@
 #include "io/boundary_value/boundary_value_contacts.hpp"
 #include "io/boundary_value/boundary_value_material.hpp"
 #include "io/boundary_value/boundary_value_mesh.hpp"
+#include "io/boundary_value/boundary_value_recorders.hpp"
 #include "io/boundary_value/field_schedule.hpp"
+#include "io/scene/table_reader.hpp"
 
 namespace ifsim::io {
 
@@ -45,6 +47,7 @@ struct BoundaryValueScene {
     // [interface] (one pair, named "interface") or the [[contact]] entries, in order.
     std::vector<BoundaryValueInterface> contacts;
     BoundaryValueOutput output;
+    Recorders recorders; // [[recorder]] entries
     std::vector<fem::Stage> stages;
 
     long total_steps() const;
@@ -53,6 +56,9 @@ struct BoundaryValueScene {
     // The solver's materials in body order.
     std::vector<fem::ElementSetMaterial> set_materials() const;
 };
+
+// A node set of the mesh named by the key's string. Throws SceneError listing the sets.
+std::string read_node_set(const TableReader& t, std::string_view key, const fem::Mesh& mesh);
 
 // Reads and checks the whole scene. Throws SceneError naming the file, the key and what was
 // expected.

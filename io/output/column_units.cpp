@@ -86,12 +86,26 @@ const std::vector<Rule>& boundary_value_rules() {
         {"stage", false, {"-", "stage number, 0 = initial state"}},
         {"time", false, {"-", "completed stages plus pseudo-time in the stage"}},
         {"newton_iterations", false, {"-", "Newton corrections of the increment"}},
-        {"u_t1", false, {"m", "mean x displacement of output.plate minus output.soil_top"}},
-        {"u_t2", false, {"m", "the same along y (3D)"}},
-        {"u_n", false, {"m", "vertical displacement of soil_top minus plate, dilation positive"}},
+        {"u_t1",
+         false,
+         {"m", "relative displacement along the pair's t1 (shear_direction; x without "
+               "contact): output.plate minus output.soil_top, or per pair master minus slave"}},
+        {"u_t2", false, {"m", "the same along t2 = t1 x n (y without contact; 3D)"}},
+        {"u_n",
+         false,
+         {"m", "relative displacement along the slave's outward normal n: soil_top minus plate "
+               "along -n (dilation positive; vertical without contact), or per pair master "
+               "minus slave along n (opening positive)"}},
         {"t_n", false, {"kPa", "mean normal traction on the soil"}},
-        {"t_t1", false, {"kPa", "mean shear traction on the soil along x"}},
-        {"t_t2", false, {"kPa", "mean shear traction on the soil along y (3D)"}},
+        {"t_t1",
+         false,
+         {"kPa", "mean shear traction on the soil along the pair's t1 (x without contact)"}},
+        {"t_t2",
+         false,
+         {"kPa", "mean shear traction on the soil along t2 (y without contact; 3D)"}},
+        {"F_n", false, {"kN", "normal contact force on the soil (per m in 2D)"}},
+        {"F_t1", false, {"kN", "shear contact force on the soil along t1 (per m in 2D)"}},
+        {"F_t2", false, {"kN", "shear contact force on the soil along t2 (3D)"}},
         {"cuts", false, {"-", "halvings of the nominal step"}},
         {"residual", false, {"-", "last relative residual of the increment"}},
         {"closed_points", false, {"-", "contact points in compression"}},
@@ -129,10 +143,20 @@ std::optional<ColumnDescription> describe_column(std::string_view kind, std::str
 }
 
 nlohmann::ordered_json describe_columns(std::string_view kind,
-                                        const std::vector<std::string>& columns) {
+                                        const std::vector<std::string>& columns,
+                                        const std::vector<NamedColumn>& named) {
     nlohmann::ordered_json out = nlohmann::ordered_json::array();
     for (const std::string& c : columns) {
-        const auto d = describe_column(kind, c);
+        std::optional<ColumnDescription> d;
+        for (const auto& [name, description] : named) {
+            if (name == c) {
+                d = description;
+                break;
+            }
+        }
+        if (!d) {
+            d = describe_column(kind, c);
+        }
         if (!d) {
             throw std::logic_error(
                 fmt::format("history column '{}' of a {} run has no unit", c, kind));

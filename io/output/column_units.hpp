@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -20,9 +21,14 @@ struct ColumnDescription {
 // "boundary-value"); nullopt for a column this table does not know.
 std::optional<ColumnDescription> describe_column(std::string_view kind, std::string_view column);
 
-// [{"name", "unit", "meaning"}] for every column; throws std::logic_error naming a column
-// without a description (a new column must come with its unit).
+// A column a run names itself (a recorder), with its description.
+using NamedColumn = std::pair<std::string, ColumnDescription>;
+
+// [{"name", "unit", "meaning"}] for every column (`named` first, then the kind's table);
+// throws std::logic_error naming a column without a description (a new column must come with
+// its unit).
 nlohmann::ordered_json describe_columns(std::string_view kind,
-                                        const std::vector<std::string>& columns);
+                                        const std::vector<std::string>& columns,
+                                        const std::vector<NamedColumn>& named = {});
 
 } // namespace ifsim::io

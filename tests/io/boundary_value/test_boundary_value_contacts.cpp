@@ -200,11 +200,12 @@ TEST(BoundaryValueContacts, TwoBlocksSlideEachWithItsOwnFriction) {
     ASSERT_EQ(r.code, 0) << r.err;
     const History h = read_history(dir);
     for (const char* pair : {"left", "right"}) {
-        for (const char* c : {"t_n", "t_t1", "t_t2", "closed_points"}) {
+        for (const char* c : {"t_n", "t_t1", "t_t2", "closed_points", "u_n", "u_t1", "u_t2",
+                              "F_n", "F_t1", "F_t2"}) {
             h.column(std::string(pair) + "." + c);
         }
     }
-    ASSERT_EQ(h.names.size(), 18u + 8u);
+    ASSERT_EQ(h.names.size(), 18u + 20u);
     EXPECT_EQ(h.names[18], "left.t_n");
     ASSERT_EQ(h.rows.size(), 23u); // row 0, 2 press, 20 slide
     const std::size_t last = h.rows.size() - 1;
