@@ -36,6 +36,7 @@ struct ContinuumCounters {
     long failed_point_updates = 0;     // base updates with status failed
     long k0_points = 0;                // integration points given a K0 initial stress
     long unreliable_committed = 0;     // committed point updates on which a safeguard acted
+    long geometry_updates = 0;         // updated Lagrangian: geometries of a new configuration
 };
 
 // The prescribed DOFs' part of a tangent (the tangent predictor): while assembling, every

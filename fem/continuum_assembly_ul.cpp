@@ -21,6 +21,7 @@ void ContinuumAssembly::begin_increment(const Mesh& mesh, std::span<const double
     ElementGeometry g = build_geometry(mesh, settings_.integration, u.data());
     geom_ = std::move(g);
     configured_u_.assign(u.begin(), u.end());
+    ++counters_.geometry_updates;
 }
 
 template <int D>

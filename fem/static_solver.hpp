@@ -52,6 +52,7 @@ struct SolverCounters {
     long gravity_load_applications = 0; // evaluations with gravity in the external force
     long pressure_load_builds = 0;
     long k0_points = 0; // integration points given a K0 initial stress
+    long geometry_updates = 0; // updated Lagrangian: element geometries rebuilt
     // Contact (all pairs): pairings, engine updates and what they cost.
     long contact_pairings = 0;
     long contact_pattern_rebuilds = 0; // patterns rebuilt because the pairing changed

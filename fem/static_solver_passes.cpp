@@ -40,6 +40,7 @@ const SolverCounters& StaticSolver::counters() const {
     counters_.failed_point_updates = m.failed_point_updates;
     counters_.unreliable_point_updates = m.unreliable_committed;
     counters_.k0_points = m.k0_points;
+    counters_.geometry_updates = m.geometry_updates;
     const LoadCounters& l = loads_.counters();
     counters_.gravity_load_builds = l.gravity_load_builds;
     counters_.gravity_load_applications = l.gravity_load_applications;

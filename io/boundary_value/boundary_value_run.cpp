@@ -311,6 +311,7 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     k["linear_factorisations"] = c.linear.numeric_factorisations;
     k["linear_solves"] = c.linear.solves;
     k["k0_points"] = c.k0_points;
+    k["geometry_updates"] = c.geometry_updates;
     k["gravity_load_applications"] = c.gravity_load_applications;
 
     auto& d = summary.details;

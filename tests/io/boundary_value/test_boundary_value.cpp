@@ -196,6 +196,10 @@ TEST(BoundaryValueRun, UpdatedLagrangianIsAnEffectTheSceneAsksFor) {
     EXPECT_EQ(summary(small)["effects"]["kinematics"], "small-strain");
     EXPECT_EQ(summary(ul)["effects"]["kinematics"], "updated-lagrangian");
     EXPECT_EQ(summary(ul)["mesh"]["kinematics"], "updated-lagrangian");
+    // Small strain builds no geometry after the first; updated Lagrangian one per increment
+    // after the first (the reference serves the first).
+    EXPECT_EQ(summary(small)["counters"]["geometry_updates"], 0);
+    EXPECT_EQ(summary(ul)["counters"]["geometry_updates"], 5);
     const History hs = read_history(small);
     const History hu = read_history(ul);
     const double ts = hs.number(6, "t_t1"), tu = hu.number(6, "t_t1");
