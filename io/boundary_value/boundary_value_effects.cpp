@@ -47,7 +47,7 @@ nlohmann::ordered_json boundary_value_effects(const BoundaryValueScene& scene) {
             {"pressures", pressures},
             {"springs", springs},
             {"fields", f.enabled()},
-            {"checkpoints", false}};
+            {"checkpoints", false}}; // set by the run (a command-line option)
 }
 
 std::string describe_effects(const nlohmann::ordered_json& e) {

@@ -398,6 +398,9 @@ int run_command(const RunOptions& opt) {
     try {
         run_kind(scene, opt, dir, parse_s, checkpoints, checkpoint ? &*checkpoint : nullptr,
                  summary, written, label, steps);
+        if (summary.details.contains("effects")) {
+            summary.details["effects"]["checkpoints"] = checkpoints.enabled();
+        }
         if (checkpoints.enabled()) {
             summary.details["checkpoints"] = {{"every", checkpoints.every},
                                               {"minutes", checkpoints.minutes},

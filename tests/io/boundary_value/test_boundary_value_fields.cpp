@@ -131,6 +131,7 @@ TEST(Effects, SummaryListsWhatTheRunBuilt) {
     EXPECT_EQ(e["dimension"], 2);
     EXPECT_FALSE(e["gravity"].get<bool>());
     EXPECT_FALSE(e["fields"].get<bool>());
+    EXPECT_FALSE(e["checkpoints"].get<bool>());
     ASSERT_EQ(e["contact_pairs"].size(), 1u);
     EXPECT_EQ(e["contact_pairs"][0]["formulation"], "novel");
     EXPECT_EQ(e["contact_pairs"][0]["model"], "hypoplasticity");
@@ -140,11 +141,13 @@ TEST(Effects, SummaryListsWhatTheRunBuilt) {
     EXPECT_FALSE(e["materials"][0]["k0"].get<bool>());
     const fs::path two = test::fresh_dir("effects-two");
     const auto r = test::run_cli_captured(
-        {"run", "scenes/fe-rough-and-smooth-2d.toml", "--out", two.string(), "--fields"});
+        {"run", "scenes/fe-rough-and-smooth-2d.toml", "--out", two.string(), "--fields",
+         "--checkpoint-every", "50"});
     ASSERT_EQ(r.code, 0) << r.err;
     const auto e2 = test::summary(two)["effects"];
     EXPECT_EQ(e2["contact_pairs"].size(), 2u);
     EXPECT_TRUE(e2["fields"].get<bool>());
+    EXPECT_TRUE(e2["checkpoints"].get<bool>());
     EXPECT_NE(r.err.find("fields: yes"), std::string::npos) << r.err;
 }
 
