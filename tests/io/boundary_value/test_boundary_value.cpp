@@ -68,6 +68,28 @@ TEST(BoundaryValueScene, ShippedScenesAreRead) {
     EXPECT_NEAR(cns.stages[1].springs[0].total_stiffness, 400.0e3 * 0.1, 1e-6);
 }
 
+// The §6 large-scale test (scenes/large-shear/, docs/large-scale-test.md): the Gmsh meshes
+// are read with their regions and face sets, four contact pairs each, the rough pair's frame
+// along the wall's downward motion; the fine mesh has at least 20 k DOFs.
+TEST(BoundaryValueScene, LargeShearScenesAreRead) {
+    for (const char* name : {"large-shear-coarse", "large-shear-novel-hypo",
+                             "large-shear-novel-sanisand", "large-shear-stutz-hypo",
+                             "large-shear-coulomb"}) {
+        const std::string file = std::string("scenes/large-shear/") + name + ".toml";
+        const BoundaryValueScene s = test::parse_boundary_value(file);
+        EXPECT_EQ(s.mesh.dim(), 3) << name;
+        EXPECT_EQ(s.contacts.size(), 4u) << name;
+        EXPECT_EQ(s.settings.kinematics, fem::Kinematics::updated_lagrangian) << name;
+        EXPECT_EQ(s.stages.size(), 8u) << name;
+        const auto& rough = s.contacts.at(s.output.contact).pair;
+        EXPECT_EQ(rough.name, "rough") << name;
+        EXPECT_EQ(rough.shear_direction, (std::array<double, 3>{0.0, 0.0, -1.0})) << name;
+        if (std::string(name) != "large-shear-coarse") {
+            EXPECT_GE(3 * s.mesh.n_nodes(), 20000) << name;
+        }
+    }
+}
+
 TEST(BoundaryValueScene, SetReachesNestedKeys) {
     const BoundaryValueScene s = test::parse_boundary_value(
         cnl_2d, {"stage.2.displacement.1.change=0.001", "interface.roughness=0.5",
