@@ -92,6 +92,8 @@ private:
     template <int D>
     void strains_ul(const Mesh& mesh, std::span<const double> du);
     template <int D>
+    bool inverted_at_gauss_points(const Mesh& mesh, int e, const double* ue) const;
+    template <int D>
     void internal_force_ul(const Mesh& mesh, const SparseSystem& system, std::span<const double> u,
                            std::span<const double> du, std::vector<double>& f);
     template <int D>

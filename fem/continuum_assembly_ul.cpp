@@ -2,6 +2,7 @@
 // increment's start configuration, midpoint strain increments with the Hughes-Winget turn of
 // the material points' start, Piola forces and their tangents.
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "engine/parallel_chunks.hpp"
@@ -10,6 +11,27 @@
 #include "fem/finite_strain.hpp"
 
 namespace ifsim::fem {
+
+// Whether the element, moved by its increment ue from the configuration of the increment's
+// start, has det J <= 0 at one of its full Gauss points (the check build_geometry makes for
+// the next increment's configuration).
+template <int D>
+bool ContinuumAssembly::inverted_at_gauss_points(const Mesh& mesh, int e, const double* ue) const {
+    constexpr int nen = ElementTraits<D>::nen;
+    double X[nen * D];
+    gather_coordinates(mesh, e, X, configured_u_.data());
+    for (int k = 0; k < nen * D; ++k) {
+        X[k] += ue[k];
+    }
+    const GaussRule<D> rule = gauss_rule<D>(false);
+    double grad[nen * D];
+    for (int q = 0; q < rule.n; ++q) {
+        if (!(physical_gradients<D>(X, rule.xi[q].data(), grad) > 0.0)) {
+            return true;
+        }
+    }
+    return false;
+}
 
 void ContinuumAssembly::begin_increment(const Mesh& mesh, std::span<const double> u) {
     if (settings_.kinematics != Kinematics::updated_lagrangian) {
@@ -40,10 +62,16 @@ void ContinuumAssembly::strains_ul(const Mesh& mesh, std::span<const double> du)
                 ue[a * D + i] = du[static_cast<std::size_t>(n * D + i)];
             }
         }
+        if (settings_.integration == Integration::reduced &&
+            inverted_at_gauss_points<D>(mesh, ei, ue)) {
+            inverted[e] = 1; // the one point's averaged gradient does not see an hourglass fold
+        }
         for (int q = 0; q < geom_.nip; ++q) {
             const Mat3 G = increment_gradient<D>(geom_.gradients(ei, q), ue);
             const IncrementKinematics k = increment_kinematics(G);
-            if (!(k.J > 0.0)) {
+            if (!(k.J > 0.0) || !k.R.allFinite() ||
+                !std::isfinite(k.deps[0] + k.deps[1] + k.deps[2] + k.deps[3] + k.deps[4] +
+                               k.deps[5])) {
                 inverted[e] = 1;
             }
             const auto p = static_cast<std::size_t>(local_of_element_[e] * geom_.nip + q);

@@ -166,7 +166,9 @@ bool StaticSolver::residual_pass(double t, std::span<const double> du, std::stri
 // Needs the residual pass at the same increment just before (the perturbation lanes start from
 // its strain increments and compare with its substep counts).
 void StaticSolver::tangent_pass(std::span<const double> du, PrescribedCoupling* coupling) {
-    (void)du; // small strain: the tangent does not depend on the iterate's geometry
+    // The tangent depends on the iterate only through what the residual pass left: the
+    // material points' trial states and, updated Lagrangian, each point's increment gradient.
+    (void)du;
     {
         PhaseTimer timer(timers_.element);
         continuum_->material_tangents(mesh_.dim());
@@ -198,6 +200,12 @@ bool StaticSolver::evaluate(double t, std::span<const double> increment, bool wi
     }
     if (increment.size() != u_.size()) {
         error = fmt::format("increment of length {} for {} DOFs", increment.size(), u_.size());
+        return false;
+    }
+    try { // updated Lagrangian: the geometry of the committed configuration
+        continuum_->begin_increment(mesh_, u_);
+    } catch (const std::invalid_argument& e) {
+        error = e.what();
         return false;
     }
     if (!residual_pass(t, increment, error)) {

@@ -31,9 +31,15 @@ std::vector<std::string> boundary_value_history_columns(const BoundaryValueScene
                                     "closed_points",  "s_p1",       "s_p2", "eps_n",
                                     "band_thickness", "e_interface"};
     if (scene.contacts.size() > 1) {
+        // The four columns every pair always had, then (added later, so appended: the older
+        // columns keep their positions) the relative displacements and forces.
         for (const BoundaryValueInterface& c : scene.contacts) {
-            for (const char* column : {"t_n", "t_t1", "t_t2", "closed_points", "u_n", "u_t1",
-                                       "u_t2", "F_n", "F_t1", "F_t2"}) {
+            for (const char* column : {"t_n", "t_t1", "t_t2", "closed_points"}) {
+                out.push_back(c.pair.name + "." + column);
+            }
+        }
+        for (const BoundaryValueInterface& c : scene.contacts) {
+            for (const char* column : {"u_n", "u_t1", "u_t2", "F_n", "F_t1", "F_t2"}) {
                 out.push_back(c.pair.name + "." + column);
             }
         }
@@ -67,6 +73,8 @@ void write_boundary_value_row(HistoryWriter& out, const BoundaryValueRow& r) {
         out.real(p.t_t1);
         out.real(p.t_t2);
         out.integer(p.closed_points);
+    }
+    for (const PairTractions& p : r.pairs) {
         for (double v : {p.u_n, p.u_t1, p.u_t2, p.F_n, p.F_t1, p.F_t2}) {
             out.real(v);
         }

@@ -13,10 +13,10 @@
 // on traction_faces. Row 0 takes the tractions from the soil's initial stress on the faces.
 // closed_points, s_p1, ..., e_interface: the continuum interface's means (empty for Coulomb
 // friction and without contact).
-// With more than one pair every row ends with, per pair in the scene's order,
-//   <name>.t_n,<name>.t_t1,<name>.t_t2,<name>.closed_points,
-//   <name>.u_n,<name>.u_t1,<name>.u_t2,<name>.F_n,<name>.F_t1,<name>.F_t2
-// in the pair's frame: mean tractions, the mean displacement of its master faces' nodes minus
+// With more than one pair every row ends with <name>.t_n,<name>.t_t1,<name>.t_t2,
+// <name>.closed_points per pair in the scene's order, then (appended later)
+// <name>.u_n,<name>.u_t1,<name>.u_t2,<name>.F_n,<name>.F_t1,<name>.F_t2 per pair, all in the
+// pair's frame: mean tractions, the mean displacement of its master faces' nodes minus
 // its slave faces' nodes (u_n along n: opening positive), and the resultant forces on the
 // soil (kN; per m in 2D). Then the [[recorder]] columns (boundary_value_recorders.hpp).
 

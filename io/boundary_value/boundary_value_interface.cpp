@@ -89,6 +89,7 @@ const std::vector<std::string_view>& boundary_value_interface_keys() {
                                                        "tolerance",
                                                        "jacobian",
                                                        "perturbation",
+                                                       "open_threshold",
                                                        "void_ratio",
                                                        "intergranular_strain",
                                                        "back_stress",

@@ -52,6 +52,23 @@ Recorders read_recorders(const TableReader& root, const fem::Mesh& mesh,
                                        "names history.csv columns), got \"{}\"",
                                        name));
         }
+        for (const char* column :
+             {"increment", "stage", "time", "newton_iterations", "u_t1", "u_t2", "u_n", "t_n",
+              "t_t1", "t_t2", "cuts", "residual", "closed_points", "s_p1", "s_p2", "eps_n",
+              "band_thickness", "e_interface"}) {
+            if (name == column) {
+                t.fail("name", fmt::format("expected a name that is not a history.csv column "
+                                           "of its own, got \"{}\"",
+                                           name));
+            }
+        }
+        for (const BoundaryValueInterface& c : contacts) {
+            if (name == c.pair.name) {
+                t.fail("name", fmt::format("expected a name that is not a contact pair's (its "
+                                           "columns are <pair>.t_n, ...), got \"{}\"",
+                                           name));
+            }
+        }
         if (t.has("nodes")) {
             t.allow_only({"name", "nodes", "direction"});
             NodeRecorder r;

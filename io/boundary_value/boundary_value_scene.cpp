@@ -2,13 +2,11 @@
 
 #include <cmath>
 #include <optional>
-#include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "io/boundary_value/boundary_value_region.hpp"
 #include "io/boundary_value/boundary_value_stage.hpp"
-#include "io/boundary_value/pair_frame.hpp"
 #include "io/scene/table_reader.hpp"
 
 namespace ifsim::io {
@@ -250,17 +248,6 @@ BoundaryValueScene read_boundary_value_scene(const toml::table& table, const std
     }
 
     scene.contacts = read_boundary_value_contacts(root, scene.mesh, scene.materials);
-    for (std::size_t k = 0; k < scene.contacts.size(); ++k) {
-        const fem::ContactPairSpec& pair = scene.contacts[k].pair;
-        try { // history.csv measures each pair in its frame (pair_frame.hpp)
-            (void)pair_frame(scene.mesh, pair.slave_faces, pair.shear_direction);
-        } catch (const std::invalid_argument& e) {
-            root.fail(
-                root.has("interface") ? std::string("interface.shear_direction")
-                                      : fmt::format("contact.{}.shear_direction", k + 1),
-                fmt::format("a direction with a part in the plane of the faces ({})", e.what()));
-        }
-    }
     read_solver(root, scene);
     scene.output = read_output(root.table("output"), scene.mesh, scene.contacts);
     scene.recorders = read_recorders(root, scene.mesh, scene.contacts);

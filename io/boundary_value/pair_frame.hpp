@@ -23,7 +23,8 @@ inline double dot(const Vec3& a, const Vec3& b) {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-// Throws std::invalid_argument when the shear direction is normal to the faces.
+// A shear direction normal to the faces falls back to the first of the vertical axis and the
+// other global axes with a part in their plane (as the contact engine keeps a frame there).
 PairFrame pair_frame(const fem::Mesh& mesh, const std::string& slave_faces,
                      const std::array<double, 3>& shear_direction);
 

@@ -72,6 +72,9 @@ void apply_field_switches(toml::table& table, const RunOptions& opt) {
     if (!opt.fields && opt.fields_every <= 0) {
         return;
     }
+    if (table.contains("output") && !table["output"].is_table()) {
+        return; // the scene reader names the mistake
+    }
     toml::table* output = table["output"].as_table();
     if (output == nullptr) {
         table.insert_or_assign("output", toml::table{});
@@ -84,7 +87,13 @@ void apply_field_switches(toml::table& table, const RunOptions& opt) {
             stages = *b;
         } else if (const toml::table* t = f->as_table()) {
             fields = *t;
+            const toml::node* st = t->get("stages");
+            if (st != nullptr && !st->is_boolean()) {
+                return; // the scene reader names the mistake
+            }
             stages = (*t)["stages"].value_or(true);
+        } else {
+            return; // neither true/false nor a table: the scene reader names the mistake
         }
     }
     fields.insert_or_assign("stages", stages || opt.fields);
@@ -267,13 +276,16 @@ int run_command(const RunOptions& opt) {
     summary.scene = opt.scene;
     summary.threads = threads.threads();
     summary.details["overrides"] = opt.sets;
-    summary.details["path"] = opt.scalar ? "scalar" : "simd";
-    summary.details["lanes"] = opt.scalar ? std::size_t{1} : simd::lanes;
 
     // Resume: the checkpoint and the scene copy of DIR, checked against each other before
     // anything in DIR changes.
     std::optional<Resumed> checkpoint;
     std::string scene_text;
+    const auto kernel_path = [&](bool scalar) {
+        summary.details["path"] = scalar ? "scalar" : "simd";
+        summary.details["lanes"] = scalar ? std::size_t{1} : simd::lanes;
+    };
+    kernel_path(opt.scalar);
     if (opt.resume) {
         try {
             checkpoint.emplace(dir);
@@ -281,6 +293,7 @@ int run_command(const RunOptions& opt) {
             fmt::print(stderr, "ifsim: error: cannot resume: {}\n", e.what());
             return exit_code::bad_input;
         }
+        kernel_path(!checkpoint->run().simd); // a resumed run keeps the path it started with
         scene_text = read_text_file(dir / "scene.toml");
         if (scene_text != checkpoint->run().scene_text) {
             fmt::print(stderr,

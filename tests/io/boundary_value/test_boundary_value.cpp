@@ -93,8 +93,10 @@ TEST(BoundaryValueScene, LargeShearScenesAreRead) {
 TEST(BoundaryValueScene, SetReachesNestedKeys) {
     const BoundaryValueScene s = test::parse_boundary_value(
         cnl_2d, {"stage.2.displacement.1.change=0.001", "interface.roughness=0.5",
-                 "material.sand.void_ratio=0.75", "body.1.elements=[2, 1]"});
+                 "material.sand.void_ratio=0.75", "body.1.elements=[2, 1]",
+                 "interface.open_threshold=0.1"});
     EXPECT_DOUBLE_EQ(s.stages[1].displacements[0].change, 0.001);
+    EXPECT_DOUBLE_EQ(s.contacts.at(0).pair.options.interface.open_threshold, 0.1);
     EXPECT_DOUBLE_EQ(s.contacts.at(0).formulation.material.roughness, 0.5);
     EXPECT_DOUBLE_EQ(s.materials.at("soil").void_ratio, 0.75);
     EXPECT_EQ(s.mesh.element_set("soil").size(), 2u);

@@ -156,6 +156,28 @@ TEST(BoundaryValueOutputs, PairFrameAndRecordersFollowAWallMovedDownwards) {
     EXPECT_TRUE(described);
 }
 
+// A shear direction normal to the faces (the default +x on these walls) falls back to the
+// vertical axis: the same history as shear_direction = [0, 1, 0] (the vertical of 2D).
+TEST(BoundaryValueOutputs, ShearDirectionNormalToTheFacesFallsBackToTheVertical) {
+    std::string text = walls_scene;
+    for (int k = 0; k < 2; ++k) {
+        text = test::replaced(text, "shear_direction = [0.0, -1.0, 0.0]",
+                              "shear_direction = [0.0, 1.0, 0.0]");
+    }
+    const std::string up = test::write_scene(text, "walls-up");
+    const std::string normal =
+        test::write_scene(test::replaced(text, "shear_direction = [0.0, 1.0, 0.0]\n\n[[contact]]",
+                                         "shear_direction = [1.0, 0.0, 0.0]\n\n[[contact]]"),
+                          "walls-normal");
+    const fs::path a = test::fresh_dir("walls-up-run"), b = test::fresh_dir("walls-normal-run");
+    ASSERT_EQ(test::run_cli_captured({"run", up, "--out", a.string(), "-q"}).code, 0);
+    ASSERT_EQ(test::run_cli_captured({"run", normal, "--out", b.string(), "-q"}).code, 0);
+    const test::History ha = test::read_history(a), hb = test::read_history(b);
+    const std::size_t last = ha.rows.size() - 1;
+    EXPECT_EQ(ha.rows[last].at("t_t1"), hb.rows[last].at("t_t1"));
+    EXPECT_LT(hb.number(last, "t_t1"), 0.0); // up along the wall: the wall drags the soil down
+}
+
 TEST(BoundaryValueOutputs, BadRecordersNameFileAndKey) {
     test::expect_boundary_value_error(
         test::replaced(walls_scene, "nodes = \"wall.all\"", "nodes = \"wall.everything\""),
@@ -170,14 +192,11 @@ TEST(BoundaryValueOutputs, BadRecordersNameFileAndKey) {
         test::replaced(walls_scene, "direction = [0.0, -2.0]", "direction = [0.0, 0.0]"),
         "recorder.1.direction", "non-zero");
     test::expect_boundary_value_error(
-        test::replaced(walls_scene,
-                       "name = \"fixed\"\nslave = \"soil.left\"\nmaster = "
-                       "\"left.right\"\nformulation = \"coulomb\"\nfriction_"
-                       "coefficient = 0.3\ntangential_stiffness = 1.0e5\nshear_"
-                       "direction = [0.0, -1.0, 0.0]",
-                       "name = \"fixed\"\nslave = \"soil.left\"\nmaster = \"left.right\"\n"
-                       "formulation = \"coulomb\"\nshear_direction = [1.0, 0.0, 0.0]"),
-        "contact.2.shear_direction", "plane of the faces");
+        test::replaced(walls_scene, "name = \"wall_down\"", "name = \"time\""), "recorder.1.name",
+        "column");
+    test::expect_boundary_value_error(
+        test::replaced(walls_scene, "name = \"mid\"", "name = \"fixed\""), "recorder.2.name",
+        "pair");
 }
 
 } // namespace
