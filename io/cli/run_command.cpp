@@ -13,6 +13,7 @@
 #include "io/boundary_value/boundary_value_run.hpp"
 #include "io/boundary_value/boundary_value_scene.hpp"
 #include "io/cli/exit_codes.hpp"
+#include "io/cli/resumed_run.hpp"
 #include "io/cli/thread_limit.hpp"
 #include "io/element_test/element_checkpoint.hpp"
 #include "io/element_test/element_history.hpp"
@@ -183,32 +184,6 @@ struct Scene {
     BoundaryValueScene boundary_value;
 };
 
-// The checkpoint of the run being resumed (ifsim resume DIR), of its kind.
-struct Resumed {
-    std::string kind;
-    BoundaryValueCheckpoint boundary_value;
-    ElementTestCheckpoint element;
-    InterfaceTestCheckpoint interface;
-
-    explicit Resumed(const fs::path& dir) : kind(checkpoint_kind(dir)) {
-        if (kind == "boundary-value") {
-            boundary_value = read_boundary_value_checkpoint(dir);
-        } else if (kind == "element-test") {
-            element = read_element_test_checkpoint(dir);
-        } else if (kind == "interface-test") {
-            interface = read_interface_test_checkpoint(dir);
-        } else {
-            throw CheckpointError(fmt::format("{}: a checkpoint of an unknown kind \"{}\"",
-                                              (dir / checkpoint_file_name).string(), kind));
-        }
-    }
-    const RunCheckpointHeader& run() const {
-        return kind == "boundary-value" ? boundary_value.run
-               : kind == "element-test" ? element.run
-                                        : interface.run;
-    }
-};
-
 // Checkpoints written by a run, for summary.json.
 struct CheckpointCount {
     long written = 0;
@@ -218,7 +193,7 @@ struct CheckpointCount {
 // Runs the scene's kind and fills the summary with its results. Throws std::runtime_error when
 // history.csv cannot be written at all.
 void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double parse_s,
-              const CheckpointRequest& checkpoints, const Resumed* resumed, RunSummary& summary,
+              const CheckpointRequest& checkpoints, const ResumedRun* resumed, RunSummary& summary,
               CheckpointCount& written, std::string& label, long& steps) {
     const ProgressMode progress = opt.quiet ? ProgressMode::never : opt.progress;
     const bool simd = resumed ? resumed->run().simd : !opt.scalar;
@@ -279,7 +254,7 @@ int run_command(const RunOptions& opt) {
 
     // Resume: the checkpoint and the scene copy of DIR, checked against each other before
     // anything in DIR changes.
-    std::optional<Resumed> checkpoint;
+    std::optional<ResumedRun> checkpoint;
     std::string scene_text;
     const auto kernel_path = [&](bool scalar) {
         summary.details["path"] = scalar ? "scalar" : "simd";
@@ -384,6 +359,19 @@ int run_command(const RunOptions& opt) {
         }
     }
     summary.details["scene_copy"] = "scene.toml";
+    // A resumed run: the checkpoint must fit the scene before history.csv is cut back.
+    if (checkpoint) {
+        const std::string why = scene.kind == "element-test" ? checkpoint->mismatch(scene.element)
+                                : scene.kind == "interface-test"
+                                    ? checkpoint->mismatch(scene.interface)
+                                    : checkpoint->mismatch(scene.boundary_value);
+        if (!why.empty() || checkpoint->kind != scene.kind) {
+            fmt::print(stderr, "ifsim: error: cannot resume: {} does not fit {}: {}\n",
+                       (dir / checkpoint_file_name).string(), (dir / "scene.toml").string(),
+                       why.empty() ? "it is of another scene kind" : why);
+            return exit_code::bad_input;
+        }
+    }
     // Options of boundary-value runs given for another kind: a bad command line.
     const bool fields = opt.fields || opt.fields_every > 0;
     if (fields && scene.kind != "boundary-value") {

@@ -140,9 +140,8 @@ TEST(Effects, SummaryListsWhatTheRunBuilt) {
     EXPECT_TRUE(e["materials"][0]["intergranular_strain"].get<bool>());
     EXPECT_FALSE(e["materials"][0]["k0"].get<bool>());
     const fs::path two = test::fresh_dir("effects-two");
-    const auto r = test::run_cli_captured(
-        {"run", "scenes/fe-rough-and-smooth-2d.toml", "--out", two.string(), "--fields",
-         "--checkpoint-every", "50"});
+    const auto r = test::run_cli_captured({"run", "scenes/fe-rough-and-smooth-2d.toml", "--out",
+                                           two.string(), "--fields", "--checkpoint-every", "50"});
     ASSERT_EQ(r.code, 0) << r.err;
     const auto e2 = test::summary(two)["effects"];
     EXPECT_EQ(e2["contact_pairs"].size(), 2u);
@@ -200,6 +199,16 @@ TEST(Resume, RefusesWhatItCannotContinueAndChangesNothing) {
     EXPECT_EQ(again.code, 2);
     EXPECT_NE(again.err.find("is not the scene the checkpoint was written for"), std::string::npos)
         << again.err;
+    EXPECT_EQ(test::read_text(el / "history.csv"), el_history);
+    // A well-formed checkpoint of this scene whose position is not in it (a stage past the
+    // end): refused before history.csv is touched.
+    c.run.scene_text = test::read_text(el / "scene.toml");
+    c.position.stage = 7;
+    write_element_test_checkpoint(el, c);
+    again = test::run_cli_captured({"resume", el.string()});
+    EXPECT_EQ(again.code, 2);
+    EXPECT_NE(again.err.find("does not fit"), std::string::npos) << again.err;
+    EXPECT_NE(again.err.find("stage 8"), std::string::npos) << again.err;
     EXPECT_EQ(test::read_text(el / "history.csv"), el_history);
 }
 
