@@ -11,6 +11,16 @@
 #include "fem/finite_strain.hpp"
 
 namespace ifsim::fem {
+namespace {
+
+// The increment gradient G of point q of element e as strains_ul stored it (row-major).
+Mat3 stored_gradient(const std::vector<double>& all, std::size_t e, int q, int nip) {
+    const double* g =
+        all.data() + 9 * (e * static_cast<std::size_t>(nip) + static_cast<std::size_t>(q));
+    return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(g);
+}
+
+} // namespace
 
 // Whether the element, moved by its increment ue from the configuration of the increment's
 // start, has det J <= 0 at one of its full Gauss points (the check build_geometry makes for
@@ -127,10 +137,7 @@ void ContinuumAssembly::internal_force_ul(const Mesh& mesh, const SparseSystem& 
                 for (int j = 0; j < 6; ++j) {
                     sigma[static_cast<std::size_t>(j)] = s.material->trial(j)[p];
                 }
-                const double* g =
-                    increment_gradients_.data() +
-                    9 * (eu * static_cast<std::size_t>(geom_.nip) + static_cast<std::size_t>(q));
-                const Mat3 G = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(g);
+                const Mat3 G = stored_gradient(increment_gradients_, eu, q, geom_.nip);
                 const Mat3 P = first_piola(sigma, increment_kinematics(G));
                 add_piola_force<D>(geom_.gradients(e, q), P, geom_.weight(e, q), f);
             }
@@ -174,10 +181,7 @@ void ContinuumAssembly::tangent_ul(const Mesh& mesh, SparseSystem& system,
                     sigma[static_cast<std::size_t>(j)] = s.material->trial(j)[p];
                     sigma_n[static_cast<std::size_t>(j)] = s.material->committed(j)[p];
                 }
-                const double* g =
-                    increment_gradients_.data() +
-                    9 * (eu * static_cast<std::size_t>(geom_.nip) + static_cast<std::size_t>(q));
-                const Mat3 G = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(g);
+                const Mat3 G = stored_gradient(increment_gradients_, eu, q, geom_.nip);
                 const auto A = first_piola_tangent<D>(G, sigma, sigma_n,
                                                       s.tangent.data() + p * nc * nc, comps);
                 add_piola_tangent<D>(geom_.gradients(e, q), A, geom_.weight(e, q), K);

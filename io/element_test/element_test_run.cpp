@@ -8,6 +8,7 @@
 #include "io/element_test/element_history.hpp"
 #include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
+#include "io/output/step_checkpoints.hpp"
 
 namespace ifsim::io {
 
@@ -25,34 +26,21 @@ ElementRunOutcome run_element_test_scene(const ElementTestScene& scene,
         line.update(row.step, row.stage);
         out.row_seconds += since(t0);
     };
-    CheckpointSchedule due(checkpoints);
-    const auto on_step = [&](const ElementTestPosition& pos) {
-        if (!due.due(pos.step)) {
-            return;
-        }
-        const auto t0 = Clock::now();
-        ElementTestCheckpoint c;
-        c.run = {"element-test",    checkpoints.scene_text, scene.settings.update.simd,
-                 pos.step,          history.sync(),         resume ? resume->run.resumes + 1 : 0,
-                 checkpoints.every, checkpoints.minutes};
-        c.position = pos;
-        write_element_test_checkpoint(dir, c);
-        ++out.checkpoints;
-        due.written();
-        out.checkpoint_seconds += since(t0);
-    };
+    StepCheckpoints<ElementTestCheckpoint, ElementTestPosition> saved(
+        checkpoints, "element-test", scene.settings.update.simd, resume, history, dir,
+        &write_element_test_checkpoint);
     try {
         out.result = run_element_test(scene.material.choice, scene.initial_state, scene.stages,
                                       scene.settings, on_row, resume ? &resume->position : nullptr,
-                                      checkpoints.enabled()
-                                          ? std::function<void(const ElementTestPosition&)>(on_step)
-                                          : std::function<void(const ElementTestPosition&)>());
+                                      saved.callback());
     } catch (const std::exception& e) {
         // A writer or engine error in the middle of the run: keep the rows so far.
         out.result.ok = false;
         out.result.reason = fmt::format("run aborted: {}", e.what());
     }
     line.finish();
+    out.checkpoints = saved.written();
+    out.checkpoint_seconds = saved.seconds();
     if (out.result.ok) {
         remove_checkpoint(dir);
     }

@@ -11,6 +11,7 @@
 #include "io/output/column_units.hpp"
 #include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
+#include "io/output/step_checkpoints.hpp"
 #include "io/scene/interface_formulation_reader.hpp"
 
 namespace ifsim::io {
@@ -33,33 +34,20 @@ InterfaceRunOutcome run_interface_test_scene(const InterfaceTestScene& scene,
         line.update(row.step, row.stage);
         out.row_seconds += since(t0);
     };
-    CheckpointSchedule due(checkpoints);
-    const auto on_step = [&](const InterfaceTestPosition& pos) {
-        if (!due.due(pos.step)) {
-            return;
-        }
-        const auto t0 = Clock::now();
-        InterfaceTestCheckpoint c;
-        c.run = {"interface-test",  checkpoints.scene_text, scene.spec.contact.simd,
-                 pos.step,          history.sync(),         resume ? resume->run.resumes + 1 : 0,
-                 checkpoints.every, checkpoints.minutes};
-        c.position = pos;
-        write_interface_test_checkpoint(dir, c);
-        ++out.checkpoints;
-        due.written();
-        out.checkpoint_seconds += since(t0);
-    };
+    StepCheckpoints<InterfaceTestCheckpoint, InterfaceTestPosition> saved(
+        checkpoints, "interface-test", scene.spec.contact.simd, resume, history, dir,
+        &write_interface_test_checkpoint);
     try {
-        out.result = run_interface_test(
-            scene.spec, on_row, resume ? &resume->position : nullptr,
-            checkpoints.enabled() ? std::function<void(const InterfaceTestPosition&)>(on_step)
-                                  : std::function<void(const InterfaceTestPosition&)>());
+        out.result = run_interface_test(scene.spec, on_row, resume ? &resume->position : nullptr,
+                                        saved.callback());
     } catch (const std::exception& e) {
         // A writer or engine error in the middle of the run: keep the rows so far.
         out.result.ok = false;
         out.result.reason = fmt::format("run aborted: {}", e.what());
     }
     line.finish();
+    out.checkpoints = saved.written();
+    out.checkpoint_seconds = saved.seconds();
     if (out.result.ok) {
         remove_checkpoint(dir);
     }
