@@ -51,7 +51,7 @@ struct SolverCounters {
     long gravity_load_builds = 0;       // unit gravity vectors integrated
     long gravity_load_applications = 0; // evaluations with gravity in the external force
     long pressure_load_builds = 0;
-    long k0_points = 0; // integration points given a K0 initial stress
+    long k0_points = 0;        // integration points given a K0 initial stress
     long geometry_updates = 0; // updated Lagrangian: element geometries rebuilt
     // Contact (all pairs): pairings, engine updates and what they cost.
     long contact_pairings = 0;

@@ -72,9 +72,9 @@ TEST(BoundaryValueScene, ShippedScenesAreRead) {
 // are read with their regions and face sets, four contact pairs each, the rough pair's frame
 // along the wall's downward motion; the fine mesh has at least 20 k DOFs.
 TEST(BoundaryValueScene, LargeShearScenesAreRead) {
-    for (const char* name : {"large-shear-coarse", "large-shear-novel-hypo",
-                             "large-shear-novel-sanisand", "large-shear-stutz-hypo",
-                             "large-shear-coulomb"}) {
+    for (const char* name :
+         {"large-shear-coarse", "large-shear-novel-hypo", "large-shear-novel-sanisand",
+          "large-shear-stutz-hypo", "large-shear-coulomb"}) {
         const std::string file = std::string("scenes/large-shear/") + name + ".toml";
         const BoundaryValueScene s = test::parse_boundary_value(file);
         EXPECT_EQ(s.mesh.dim(), 3) << name;
@@ -213,8 +213,8 @@ TEST(BoundaryValueRun, UpdatedLagrangianIsAnEffectTheSceneAsksFor) {
     std::vector<std::string> a = {"run", cnl_2d, "--out", small.string()};
     a.insert(a.end(), shear.begin(), shear.end());
     ASSERT_EQ(run(a), 0);
-    std::vector<std::string> b = {"run", cnl_2d, "--out", ul.string(), "--set",
-                                  "mesh.kinematics=\"updated-lagrangian\""};
+    std::vector<std::string> b = {"run",       cnl_2d,  "--out",
+                                  ul.string(), "--set", "mesh.kinematics=\"updated-lagrangian\""};
     b.insert(b.end(), shear.begin(), shear.end());
     ASSERT_EQ(run(b), 0);
     EXPECT_EQ(summary(small)["effects"]["kinematics"], "small-strain");

@@ -200,8 +200,8 @@ TEST(BoundaryValueContacts, TwoBlocksSlideEachWithItsOwnFriction) {
     ASSERT_EQ(r.code, 0) << r.err;
     const History h = read_history(dir);
     for (const char* pair : {"left", "right"}) {
-        for (const char* c : {"t_n", "t_t1", "t_t2", "closed_points", "u_n", "u_t1", "u_t2",
-                              "F_n", "F_t1", "F_t2"}) {
+        for (const char* c : {"t_n", "t_t1", "t_t2", "closed_points", "u_n", "u_t1", "u_t2", "F_n",
+                              "F_t1", "F_t2"}) {
             h.column(std::string(pair) + "." + c);
         }
     }
