@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "engine/parallel_chunks.hpp"
+#include "fem/continuum_force_loop.hpp"
 #include "fem/continuum_set_data.hpp"
 #include "fem/element_kernels.hpp"
 #include "fem/phase_timer.hpp"
@@ -271,8 +272,6 @@ template <int D>
 void ContinuumAssembly::internal_force_d(const Mesh& mesh, const SparseSystem& system,
                                          std::span<const double> u, std::span<const double> du,
                                          std::vector<double>& f_int) {
-    using Tr = ElementTraits<D>;
-    const bool reduced = settings_.integration == Integration::reduced;
     // Trial columns move on every commit (swap): look them up once per pass.
     auto& stress = stress_cols_;
     stress.resize(sets_.size());
@@ -281,23 +280,8 @@ void ContinuumAssembly::internal_force_d(const Mesh& mesh, const SparseSystem& s
             stress[k][static_cast<std::size_t>(j)] = sets_[k]->material->trial(j);
         }
     }
-    std::fill(f_int.begin(), f_int.end(), 0.0);
-    // Colour by colour: no two elements of a colour share a node, so the scatter needs no lock
-    // and every sum is formed in the same order for any number of threads.
-    for (int c = 0; c < system.n_colours(); ++c) {
-        const auto elements = system.colour(c);
-        for_each_index(elements.size(), settings_.element_grain, [&](std::size_t k) {
-            const int e = elements[k];
-            const auto eu = static_cast<std::size_t>(e);
-            const auto set = static_cast<std::size_t>(set_of_element_[eu]);
-            const int local = local_of_element_[eu];
-            int dof[Tr::ndof];
-            for (int a = 0; a < Tr::nen; ++a) {
-                for (int i = 0; i < D; ++i) {
-                    dof[a * D + i] = mesh.node(e, a) * D + i;
-                }
-            }
-            double f[Tr::ndof] = {};
+    force_loop<D>(
+        mesh, system, u, du, f_int, geom_, [&](int e, std::size_t set, int local, double* f) {
             for (int q = 0; q < geom_.nip; ++q) {
                 const auto p = static_cast<std::size_t>(local * geom_.nip + q);
                 Sym<double> s;
@@ -306,21 +290,7 @@ void ContinuumAssembly::internal_force_d(const Mesh& mesh, const SparseSystem& s
                 }
                 add_internal_force<D>(geom_.gradients(e, q), s, geom_.weight(e, q), f);
             }
-            if (reduced) { // hourglass force of the total displacement
-                double ut[Tr::ndof];
-                for (int k2 = 0; k2 < Tr::ndof; ++k2) {
-                    const auto d = static_cast<std::size_t>(dof[k2]);
-                    ut[k2] = u[d] + du[d];
-                }
-                add_hourglass_force<D>(geom_.hourglass_gamma.data() +
-                                           eu * Tr::n_hourglass * Tr::nen,
-                                       hourglass_k_[eu], ut, f);
-            }
-            for (int k2 = 0; k2 < Tr::ndof; ++k2) {
-                f_int[static_cast<std::size_t>(dof[k2])] += f[k2];
-            }
         });
-    }
 }
 
 void ContinuumAssembly::internal_force(const Mesh& mesh, const SparseSystem& system,

@@ -89,6 +89,10 @@ private:
     struct SetData;
     template <int D>
     void strains_d(const Mesh& mesh, std::span<const double> du);
+    template <int D, class PointForces>
+    void force_loop(const Mesh& mesh, const SparseSystem& system, std::span<const double> u,
+                    std::span<const double> du, std::vector<double>& f,
+                    const ElementGeometry& hourglass, PointForces&& point_forces);
     template <int D>
     void strains_ul(const Mesh& mesh, std::span<const double> du);
     template <int D>

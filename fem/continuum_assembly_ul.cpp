@@ -7,6 +7,7 @@
 
 #include "engine/parallel_chunks.hpp"
 #include "fem/continuum_assembly.hpp"
+#include "fem/continuum_force_loop.hpp"
 #include "fem/continuum_set_data.hpp"
 #include "fem/finite_strain.hpp"
 
@@ -114,48 +115,22 @@ template <int D>
 void ContinuumAssembly::internal_force_ul(const Mesh& mesh, const SparseSystem& system,
                                           std::span<const double> u, std::span<const double> du,
                                           std::vector<double>& f_int) {
-    using Tr = ElementTraits<D>;
-    const bool reduced = settings_.integration == Integration::reduced;
-    std::fill(f_int.begin(), f_int.end(), 0.0);
-    for (int c = 0; c < system.n_colours(); ++c) {
-        const auto elements = system.colour(c);
-        for_each_index(elements.size(), settings_.element_grain, [&](std::size_t k) {
-            const int e = elements[k];
-            const auto eu = static_cast<std::size_t>(e);
-            const SetData& s = *sets_[static_cast<std::size_t>(set_of_element_[eu])];
-            const int local = local_of_element_[eu];
-            int dof[Tr::ndof];
-            for (int a = 0; a < Tr::nen; ++a) {
-                for (int i = 0; i < D; ++i) {
-                    dof[a * D + i] = mesh.node(e, a) * D + i;
-                }
-            }
-            double f[Tr::ndof] = {};
-            for (int q = 0; q < geom_.nip; ++q) {
-                const auto p = static_cast<std::size_t>(local * geom_.nip + q);
-                Sym<double> sigma;
-                for (int j = 0; j < 6; ++j) {
-                    sigma[static_cast<std::size_t>(j)] = s.material->trial(j)[p];
-                }
-                const Mat3 G = stored_gradient(increment_gradients_, eu, q, geom_.nip);
-                const Mat3 P = first_piola(sigma, increment_kinematics(G));
-                add_piola_force<D>(geom_.gradients(e, q), P, geom_.weight(e, q), f);
-            }
-            if (reduced) { // hourglass force of the total displacement, reference base vectors
-                double ut[Tr::ndof];
-                for (int k2 = 0; k2 < Tr::ndof; ++k2) {
-                    const auto d = static_cast<std::size_t>(dof[k2]);
-                    ut[k2] = u[d] + du[d];
-                }
-                add_hourglass_force<D>(reference_.hourglass_gamma.data() +
-                                           eu * Tr::n_hourglass * Tr::nen,
-                                       hourglass_k_[eu], ut, f);
-            }
-            for (int k2 = 0; k2 < Tr::ndof; ++k2) {
-                f_int[static_cast<std::size_t>(dof[k2])] += f[k2];
-            }
-        });
-    }
+    // Hourglass base vectors of the reference: a rigid rotation is linear in X.
+    force_loop<D>(mesh, system, u, du, f_int, reference_,
+                  [&](int e, std::size_t set, int local, double* f) {
+                      const SetData& s = *sets_[set];
+                      const auto eu = static_cast<std::size_t>(e);
+                      for (int q = 0; q < geom_.nip; ++q) {
+                          const auto p = static_cast<std::size_t>(local * geom_.nip + q);
+                          Sym<double> sigma;
+                          for (int j = 0; j < 6; ++j) {
+                              sigma[static_cast<std::size_t>(j)] = s.material->trial(j)[p];
+                          }
+                          const Mat3 G = stored_gradient(increment_gradients_, eu, q, geom_.nip);
+                          const Mat3 P = first_piola(sigma, increment_kinematics(G));
+                          add_piola_force<D>(geom_.gradients(e, q), P, geom_.weight(e, q), f);
+                      }
+                  });
 }
 
 template <int D>
