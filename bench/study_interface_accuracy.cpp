@@ -334,6 +334,8 @@ const char* jacobian_name(ContactJacobian j) {
         return "full-perturbation";
     case ContactJacobian::analytical:
         return "analytical";
+    case ContactJacobian::central:
+        return "central";
     }
     return "?";
 }

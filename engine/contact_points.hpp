@@ -28,7 +28,10 @@ namespace contact_col {
 // inputs
 inline constexpr int t_N = 0, k_N = 1, dg1 = 2, dg2 = 3, s_p1 = 4, s_p2 = 5;
 inline constexpr int n = 6, t1 = 9, t2 = 12; // frame vectors, 3 columns each
-inline constexpr int n_inputs = 15;
+// d s_p / d t_N of the caller's in-plane targets (0 when they do not follow t_N; e.g. targets
+// bounded by a multiple of t_N): the normal perturbation lanes move s_p with t_N.
+inline constexpr int dsp1_dtn = 15, dsp2_dtn = 16;
+inline constexpr int n_inputs = 17;
 // outputs
 inline constexpr int traction = 0; // t_N, tau1, tau2
 inline constexpr int jacobian = 3; // 3 * (2 ndim) columns: comp + 3 * column

@@ -18,6 +18,13 @@
 //                      the start state by theta times the derivative of the END state, which
 //                      counted the dependence twice (columns about 2x too large).
 //   analytical         Eq. B3: rate stiffness of the model times d eps / d g (first term of B2)
+//   central            the lanes of Eq. 37, combined: the slave lane of a local axis moves the
+//                      gap by +theta, the master lane of the same axis by -theta, and the
+//                      tractions depend on the two sides only through the gap, so
+//                      (t(+theta) - t(-theta)) / 2 theta is the derivative for both (slave: +,
+//                      master: -) to O(theta^2) at no extra cost. Eq. 37's forward differences
+//                      carry theta |t''| / 2, large where the normal perturbation is a sizeable
+//                      part of t_N (docs/interface.md).
 
 #include <algorithm>
 #include <cmath>
@@ -32,7 +39,12 @@
 
 namespace ifsim {
 
-enum class ContactJacobian : int { perturbation = 0, full_perturbation = 1, analytical = 2 };
+enum class ContactJacobian : int {
+    perturbation = 0,
+    full_perturbation = 1,
+    analytical = 2,
+    central = 3
+};
 
 struct ContactOptions {
     bool simd = true;
@@ -49,7 +61,7 @@ struct ContactReport {
     double first_failed_residual = 0.0;
     double first_failed_cause = 0.0; // interface_failure code
     std::size_t band_clamped = 0;    // points whose d_s was held at its floor
-    double dropped_columns = 0.0;    // Jacobian columns zeroed because a perturbed lane failed
+    double dropped_columns = 0.0;    // failed Jacobian lanes (their point took Eq. B3's columns)
     std::size_t open = 0;
     double lanes = 0.0;         // evaluations of Algorithm 1 (base + perturbed)
     double subincrements = 0.0; // base lanes
@@ -190,8 +202,12 @@ private:
                 cp.input(contact_col::t_N)[i] + cp.input(contact_col::k_N)[i] * dgn;
             lanes_.col(dg1)[l] = cp.input(contact_col::dg1)[i] - dg_t1;
             lanes_.col(dg2)[l] = cp.input(contact_col::dg2)[i] - dg_t2;
-            lanes_.col(s_p1)[l] = cp.input(contact_col::s_p1)[i];
-            lanes_.col(s_p2)[l] = cp.input(contact_col::s_p2)[i];
+            // Targets tied to t_N (bounds, relaxation) follow the normal perturbation.
+            const double dtn = cp.input(contact_col::k_N)[i] * dgn;
+            lanes_.col(s_p1)[l] =
+                cp.input(contact_col::s_p1)[i] + cp.input(contact_col::dsp1_dtn)[i] * dtn;
+            lanes_.col(s_p2)[l] =
+                cp.input(contact_col::s_p2)[i] + cp.input(contact_col::dsp2_dtn)[i] * dtn;
             // Perturbed lanes follow their base's discretisation.
             lanes_.col(forced)[l] = k == 0 ? 0.0 : std::max(1.0, lanes_.col(subincrements)[i]);
             for (int c = 0; c < ContactPoints<M>::n_state_cols; ++c) {
@@ -226,8 +242,8 @@ private:
         const int n_pert = blocks > 1 ? 2 * ndim : 0;
         for (std::size_t i = b; i < e; ++i) {
             // The point's status is its base lane's. A perturbed lane that fails while the base
-            // succeeded (e.g. a normal perturbation closing an open contact at t_N ~ 0) gives a
-            // zero column, counted, instead of failing the point.
+            // succeeded (e.g. a normal perturbation closing an open contact at t_N ~ 0) is
+            // counted and the point takes the analytical columns instead of failing.
             const double st = lanes_.col(status)[i];
             const double why = lanes_.col(cause)[i];
             double evals = 0.0;
@@ -244,11 +260,19 @@ private:
             for (int comp = 0; comp < 3; ++comp) {
                 cp.output(contact_col::traction + comp)[i] = lane_traction(i, comp);
             }
-            if (n_pert > 0) {
+            // A point whose base succeeded but whose reference or perturbed lanes failed (a
+            // lane that cannot be integrated with the base's equal sub-increments, e.g. at a
+            // reversal) takes the analytical columns of Eq. B3: the exact penalty row and the
+            // model's rate stiffness in shear. Zero columns dropped the penalty row with them
+            // and left the global Newton without the normal stiffness of the point.
+            if (n_pert > 0 && dropped > 0.0 && st > -0.5) {
+                analytical_jacobian(cp, mp, opt, i);
+            } else if (n_pert > 0) {
                 // Columns along the local axes, then turned into the global directions:
                 // d t / d u_d = sum over axes a of (d t / d u along a) (e_a)_d.
                 const bool ref_ok = lanes_.col(status)[ref * P + i] > -0.5;
                 double local[3][6] = {};
+                const bool central = opt.jacobian == ContactJacobian::central;
                 for (int k = 1; k <= n_pert; ++k) {
                     const bool usable = ref_ok && lanes_.col(status)[k * P + i] > -0.5;
                     double sign = 0.0;
@@ -259,6 +283,17 @@ private:
                                                        lane_traction(ref * P + i, comp)) /
                                                           th
                                                     : 0.0;
+                    }
+                }
+                for (int a = 0; central && a < ndim; ++a) {
+                    // Slave lane: +theta on the gap, master lane: -theta. Where one of the two
+                    // failed its forward difference is zero; keep the other one-sided.
+                    const bool s_ok = lanes_.col(status)[(1 + a) * P + i] > -0.5;
+                    const bool m_ok = lanes_.col(status)[(1 + ndim + a) * P + i] > -0.5;
+                    for (int comp = 0; comp < 3 && s_ok && m_ok; ++comp) {
+                        const double d = 0.5 * (local[comp][a] - local[comp][ndim + a]);
+                        local[comp][a] = d;
+                        local[comp][ndim + a] = -d;
                     }
                 }
                 const int axes[3] = {contact_col::n, contact_col::t1, contact_col::t2};

@@ -64,6 +64,7 @@ ContactSetCounters ContactSet::counters() const {
         s.relaxed_reruns += k.relaxed_reruns;
         s.relaxed_point_updates += k.relaxed_point_updates;
         s.band_clamped += k.band_clamped;
+        s.dropped_columns += k.dropped_columns;
     }
     return s;
 }

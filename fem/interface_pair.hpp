@@ -109,15 +109,23 @@ protected:
     // follows it sits on its limit surface, where every sub-increment of shear strains it
     // further sideways (eps_p1 -> +100 %, eps_N -> -95 %: band collapse). Inside the range the
     // targets are the continuum's, as Eqs. 19-20 state (the shear box keeps 0.5 ... 0.8).
+    //
+    // Both rules tie the target to t_N; its derivative d s_p / d t_N goes to the engine, whose
+    // normal perturbation lanes (Eq. 37) move the target with t_N as the residual does.
     void set_targets(std::size_t i) {
         const double l = relax_.empty() ? 1.0 : relax_[i];
         const double t_N = points_.input(contact_col::t_N)[i];
         for (int c = 1; c <= 2; ++c) {
             double s_p = local_stress_[i][static_cast<std::size_t>(c)];
+            double ds_p = 0.0;
             if (t_N < 0.0) {
-                s_p = std::clamp(s_p, t_N / k_lo_, k_lo_ * t_N);
+                const double lo = t_N / k_lo_, hi = k_lo_ * t_N; // lo < hi < 0
+                ds_p = s_p < lo ? 1.0 / k_lo_ : s_p > hi ? k_lo_ : 0.0;
+                s_p = std::clamp(s_p, lo, hi);
             }
-            points_.input(contact_col::s_p1 + c - 1)[i] = l >= 1.0 ? s_p : t_N + l * (s_p - t_N);
+            const bool relaxed = l < 1.0;
+            points_.input(contact_col::s_p1 + c - 1)[i] = relaxed ? t_N + l * (s_p - t_N) : s_p;
+            points_.input(contact_col::dsp1_dtn + c - 1)[i] = relaxed ? 1.0 - l + l * ds_p : ds_p;
         }
     }
 

@@ -90,6 +90,10 @@ struct SolverSettings {
     double gather_tolerance = 1.0e-3;
     int max_gathers = 10;
     std::size_t element_grain = 64; // elements per task in the element loops
+    // Diagnostic: at every Newton iteration compare the tangent with central differences of
+    // the residual along the Newton direction (fem/tangent_check.cpp; costs 4 residual
+    // passes per iteration). The records are kept by the solver.
+    bool check_tangent = false;
 };
 
 } // namespace ifsim::fem

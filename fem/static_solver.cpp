@@ -202,6 +202,9 @@ bool StaticSolver::newton_step(double t_end, double& rel, double& correction, In
         }
     }
     ++counters_.newton_iterations;
+    if (settings_.check_tangent) {
+        check_tangent(t_end, info);
+    }
     // Backtracking line search on the residual norm: halve the step while the residual
     // grows (a kink of the response sends full Newton steps into 2-cycles). A failed
     // evaluation (a material or interface point) is also retried with half the step.

@@ -73,7 +73,8 @@ struct SolverCounters {
     double worst_gather_change = 0.0; // largest target change left in an accepted increment
     long contact_relaxed_reruns = 0;  // see ContactPairCounters
     double contact_relaxed_point_updates = 0.0;
-    long contact_band_clamped = 0; // point evaluations on a clamped band (clamp_band = true)
+    long contact_band_clamped = 0;      // point evaluations on a clamped band (clamp_band = true)
+    double contact_dropped_lanes = 0.0; // failed Jacobian lanes (the point took Eq. B3's columns)
     LinearSolverCounters linear;
 };
 
@@ -114,6 +115,21 @@ struct IncrementInfo {
     std::vector<double> residuals;   // relative residual at each evaluation
     std::vector<double> corrections; // relative correction of each Newton iteration
     StageCursor next;                // after a converged increment: where the stage goes on
+};
+
+// One Newton iteration's tangent against central differences of the residual along the
+// Newton direction c (settings.check_tangent): (R(u + h c) - R(u - h c)) / 2h against -K c,
+// scaled so that the largest entry of h c is `step` metres. `mismatch` is the relative norm
+// of the difference, `pairs` the same for each contact pair's own forces and tangent entries.
+struct TangentCheckRecord {
+    int stage = 0;
+    double t_end = 0.0;
+    int iteration = 0;
+    double step = 0.0;
+    double mismatch = 0.0;
+    int worst_dof = -1; // global DOF (dim * node + direction) of the largest difference
+    double worst_difference = 0.0, worst_tangent = 0.0;
+    std::vector<double> pairs; // per contact pair, in the order they were added
 };
 
 // The out-of-balance force of the initial state (stresses, loads and supports of the first
@@ -202,6 +218,7 @@ public:
     const DofMap& dof_map() const { return dofs_; }
     const std::vector<double>& residual() const { return residual_; }
     const Eigen::SparseMatrix<double>& tangent_matrix() const { return system_->matrix(); }
+    const std::vector<TangentCheckRecord>& tangent_checks() const { return tangent_checks_; }
 
 private:
     bool solve_increment(double t_begin, double t_end, IncrementInfo& info, std::string& error,
@@ -219,6 +236,9 @@ private:
     bool newton_step(double t_end, double& rel, double& correction, IncrementInfo& info,
                      std::string& error);
     bool residual_pass(double t, std::span<const double> du, std::string& error);
+    // settings.check_tangent: records the tangent at du_ against central differences along
+    // the solved correction; leaves residual_ and the force level as they were.
+    void check_tangent(double t_end, const IncrementInfo& info);
     void tangent_pass(std::span<const double> du, PrescribedCoupling* coupling = nullptr);
     // Pairs every contact at the committed configuration and gathers its stresses; rebuilds
     // the sparse pattern when the stage's DOF map or a pairing changed.
@@ -269,6 +289,7 @@ private:
     std::vector<double> contact_du_;    // the trial increment handed to the contact pairs
 
     InitialImbalance imbalance_;
+    std::vector<TangentCheckRecord> tangent_checks_;
     mutable SolverCounters counters_;
     SolverTimers timers_;
 };

@@ -56,6 +56,7 @@ const SolverCounters& StaticSolver::counters() const {
     counters_.contact_relaxed_reruns = c.relaxed_reruns;
     counters_.contact_relaxed_point_updates = c.relaxed_point_updates;
     counters_.contact_band_clamped = c.band_clamped;
+    counters_.contact_dropped_lanes = c.dropped_columns;
     return counters_;
 }
 

@@ -241,12 +241,28 @@ void interface_step(const typename M::Params& mp, const InterfaceSettings& s,
         }
         const T grow = simd::min(T(4.0), simd::max(T(0.2), q));
         const T shrink = simd::select(both, simd::max(T(0.2), simd::min(q, T(0.5))), T(0.25));
-        next_h = simd::select(c.forced, c.h, simd::select(accept, hl * grow, hl * shrink));
+        // Forced lanes keep their size and halve it where Newton fails (forced_step_size).
+        next_h = simd::select(c.forced, simd::select(accept, c.h, 0.5 * hl),
+                              simd::select(accept, hl * grow, hl * shrink));
         // A sub-increment that cannot be made small enough ends the lane as failed.
-        const Mask too_small = c.active && !accept && ((hl * c.total < 1.0e-12) || c.forced);
+        const Mask too_small = c.active && !accept && (hl * c.total < 1.0e-12);
         fail(too_small && full.model_failed, interface_failure::model);
         fail(too_small, interface_failure::newton);
         c.active = c.active && !too_small;
+    } else if (s.adaptive) {
+        // Only forced lanes in this batch: the Jacobian lanes of an adaptive run. They take the
+        // base's count of equal sub-increments, which need not be integrable where the base
+        // took unequal ones (a first sub-increment across a reversal): a sub-increment whose
+        // Newton fails is halved and the lane goes on at that size. The decision depends only
+        // on the lane's own data, and the reference lane (the base re-run on this
+        // discretisation) and its perturbations almost always split at the same places, so
+        // their differences stay derivatives of one discretisation. Failing them instead
+        // dropped their point's Jacobian columns (docs/large-scale-test.md).
+        const Mask retry = c.active && !full.converged && (hl * c.total >= 1.0e-12);
+        c.h = simd::select(retry, 0.5 * hl, c.h);
+        fail(c.active && !retry && full.model_failed, interface_failure::model);
+        fail(c.active && !retry && !full.converged, interface_failure::newton);
+        c.active = c.active && (full.converged || retry);
     } else {
         fail(c.active && full.model_failed, interface_failure::model);
         fail(c.active && !full.converged, interface_failure::newton);

@@ -12,6 +12,7 @@
 #include "io/boundary_value/boundary_value_effects.hpp"
 #include "io/boundary_value/boundary_value_fields.hpp"
 #include "io/boundary_value/boundary_value_history.hpp"
+#include "io/boundary_value/tangent_check_file.hpp"
 #include "io/output/column_units.hpp"
 #include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
@@ -228,6 +229,14 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
     if (probe) {
         out.point_recorders = probe->recorders().chosen_points();
     }
+    if (solver && scene.settings.check_tangent) {
+        try { // also after a failed run: the iterations that led there are the point
+            write_tangent_checks(dir, *solver);
+        } catch (const std::exception& e) {
+            out.ok = false;
+            out.reason = e.what();
+        }
+    }
     if (solver) {
         out.counters = solver->counters();
         out.imbalance = solver->initial_imbalance();
@@ -282,6 +291,7 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     }
     if (contact) {
         k["contact_band_clamped"] = c.contact_band_clamped;
+        k["contact_dropped_lanes"] = c.contact_dropped_lanes;
     }
     k["patterns_built"] = c.patterns_built;
     k["unreliable_point_updates"] = c.unreliable_point_updates;

@@ -23,7 +23,8 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
     const TableReader t = root.table("solver");
     t.allow_only({"residual_tolerance", "displacement_tolerance", "max_iterations", "max_cuts",
                   "growth_after", "max_line_search", "stagnation_tolerance", "gather_tolerance",
-                  "max_gathers", "linear_solver", "tangent", "predictor", "extrapolate"});
+                  "max_gathers", "linear_solver", "tangent", "predictor", "extrapolate",
+                  "check_tangent"});
     s.residual_tolerance =
         t.number_or("residual_tolerance", s.residual_tolerance, Bounds::open(0.0, 1.0));
     s.displacement_tolerance =
@@ -37,6 +38,7 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
     s.gather_tolerance =
         t.number_or("gather_tolerance", s.gather_tolerance, Bounds::open(0.0, 1.0));
     s.max_gathers = static_cast<int>(t.integer_or("max_gathers", s.max_gathers, 0, 1000));
+    s.check_tangent = t.boolean_or("check_tangent", false);
     scene.linear_solver = t.choice_or("linear_solver", "umfpack", {"umfpack", "klu"});
     s.linear_solver = scene.linear_solver == "umfpack" ? fem::LinearSolverKind::umfpack
                                                        : fem::LinearSolverKind::klu;

@@ -152,8 +152,8 @@ int run_cli(int argc, const char* const* argv) {
         ->capture_default_str();
     bench_cmd
         ->add_option("--jacobian", bench.jacobian,
-                     "Interface Jacobian: perturbation (Eq. 37) | full-perturbation (Eqs. "
-                     "39-40) | analytical (Eq. B3)")
+                     "Interface Jacobian: perturbation (Eq. 37) | central (Eq. 37's lanes as "
+                     "central differences) | full-perturbation (Eqs. 39-40) | analytical (Eq. B3)")
         ->capture_default_str();
     bench_cmd
         ->add_option("--subincrement", bench.subincrement,

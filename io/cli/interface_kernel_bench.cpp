@@ -118,6 +118,7 @@ Totals time_contact(const typename M::Params& params, const KernelBenchOptions& 
     opt.interface.adaptive = o.subincrement == "adaptive";
     opt.jacobian = o.jacobian == "analytical"          ? ContactJacobian::analytical
                    : o.jacobian == "full-perturbation" ? ContactJacobian::full_perturbation
+                   : o.jacobian == "central"           ? ContactJacobian::central
                                                        : ContactJacobian::perturbation;
     ContactEngine<M> engine;
     Totals t;
@@ -183,9 +184,10 @@ nlohmann::ordered_json run_interface_kernel_bench(const KernelBenchOptions& o) {
             fmt::format("--formulation {}: expected none, novel, stutz or coulomb", o.formulation));
     }
     if (o.jacobian != "perturbation" && o.jacobian != "full-perturbation" &&
-        o.jacobian != "analytical") {
+        o.jacobian != "central" && o.jacobian != "analytical") {
         throw std::invalid_argument(fmt::format(
-            "--jacobian {}: expected perturbation, full-perturbation or analytical", o.jacobian));
+            "--jacobian {}: expected perturbation, central, full-perturbation or analytical",
+            o.jacobian));
     }
     if (o.subincrement != "fixed" && o.subincrement != "adaptive") {
         throw std::invalid_argument(

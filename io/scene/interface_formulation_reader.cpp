@@ -66,8 +66,9 @@ void read_continuum(const TableReader& t, InterfaceFormulationSpec& spec) {
     s.tolerance = t.number_or("tolerance", 2.0e-3, Bounds::open(0.0, 1.0));
     s.adaptive_tolerance = s.tolerance; // the contract: one tolerance for both unless refined
     spec.jacobian = t.choice_or("jacobian", "perturbation",
-                                {"perturbation", "full-perturbation", "analytical"});
+                                {"perturbation", "central", "full-perturbation", "analytical"});
     c.jacobian = spec.jacobian == "perturbation"        ? ContactJacobian::perturbation
+                 : spec.jacobian == "central"           ? ContactJacobian::central
                  : spec.jacobian == "full-perturbation" ? ContactJacobian::full_perturbation
                                                         : ContactJacobian::analytical;
     c.perturbation = t.number_or("perturbation", c.perturbation, Bounds::open(0.0, 1.0));

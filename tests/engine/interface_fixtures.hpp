@@ -86,6 +86,7 @@ struct PointInput {
     double t_N = -100.0, k_N = 2.0e5;
     double dg1 = 1.0e-5, dg2 = 4.0e-6;
     double s_p1 = -52.0, s_p2 = -47.0;
+    double dsp1_dtn = 0.0, dsp2_dtn = 0.0; // in-plane targets tied to t_N (contact_col)
 };
 
 // The input of Algorithm 1 after a change dgap of the gap vector g (global components), i.e.
@@ -98,7 +99,13 @@ inline InterfaceInput<double> shifted_input(const PointInput& p, const Frame& f,
         g1 += dgap[d] * f.t1[d];
         g2 += dgap[d] * f.t2[d];
     }
-    return {p.t_N + p.k_N * gn, p.dg1 - g1, p.dg2 - g2, p.s_p1, p.s_p2, forced};
+    const double dt_N = p.k_N * gn;
+    return {p.t_N + dt_N,
+            p.dg1 - g1,
+            p.dg2 - g2,
+            p.s_p1 + p.dsp1_dtn * dt_N,
+            p.s_p2 + p.dsp2_dtn * dt_N,
+            forced};
 }
 
 // One scalar evaluation of Algorithm 1 from a start state (model state y, interface strains).
@@ -107,6 +114,17 @@ struct DirectResult {
     InterfaceState<double, M::n_state> st;
     InterfaceStats<double> stats;
     std::array<double, 3> traction() const { return {st.y[0], st.y[3], st.y[4]}; }
+    // The traction the contact engine transmits (docs/interface.md): an open point (t_N above
+    // -open_threshold) gives the penalty's t_N (none when separated) and the band's shear scaled
+    // by t_N / sigma_N of the band.
+    std::array<double, 3> contact_traction(const InterfaceInput<double>& in) const {
+        if (stats.open < 0.5) {
+            return traction();
+        }
+        const double tn = std::min(0.0, in.t_N);
+        const double fade = st.y[0] < 0.0 ? std::clamp(tn / st.y[0], 0.0, 1.0) : 0.0;
+        return {tn, fade * st.y[3], fade * st.y[4]};
+    }
 };
 template <class M>
 DirectResult<M> direct_update(const typename M::Params& mp, const InterfaceSettings& s,
@@ -155,19 +173,13 @@ struct ColumnErrors {
 // Two points in one engine call (varied increments and targets, the same tilted frame), each
 // compared with its own central differences. With reference = false only the exact penalty row
 // is checked (schemes that are not the derivative of the update).
+// The points' inputs are given; h is the step of the central differences.
 template <class M>
 ColumnErrors jacobian_errors(const typename M::Params& mp, const StateVec<double, M::n_state>& y,
-                             int ndim, const ContactOptions& opt, bool reference = true) {
-    const double h = 1.0e-7;
+                             int ndim, const ContactOptions& opt,
+                             const std::vector<PointInput>& inputs, bool reference = true,
+                             double h = 1.0e-7) {
     const Frame fr = tilted_frame(ndim);
-    std::vector<PointInput> inputs(2);
-    for (int i = 0; i < 2; ++i) {
-        inputs[i].dg1 = 1.0e-5 * (1.0 + 0.3 * i);
-        inputs[i].dg2 = ndim == 3 ? 4.0e-6 * (1.0 - 0.7 * i) : 0.0;
-        inputs[i].t_N = -100.0 - 3.0 * i;
-        inputs[i].s_p1 = -52.0 + i;
-        inputs[i].s_p2 = -47.0 - i;
-    }
     ContactPoints<M> cp(inputs.size(), ndim);
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         cp.set_state(i, y);
@@ -178,6 +190,8 @@ ColumnErrors jacobian_errors(const typename M::Params& mp, const StateVec<double
         cp.input(contact_col::dg2)[i] = inputs[i].dg2;
         cp.input(contact_col::s_p1)[i] = inputs[i].s_p1;
         cp.input(contact_col::s_p2)[i] = inputs[i].s_p2;
+        cp.input(contact_col::dsp1_dtn)[i] = inputs[i].dsp1_dtn;
+        cp.input(contact_col::dsp2_dtn)[i] = inputs[i].dsp2_dtn;
     }
     ContactEngine<M> engine;
     const ContactReport rep = engine.update(cp, mp, opt);
@@ -193,13 +207,13 @@ ColumnErrors jacobian_errors(const typename M::Params& mp, const StateVec<double
             std::array<double, 3> gp{0.0, 0.0, 0.0}, gm{0.0, 0.0, 0.0};
             gp[d] = sign * h;
             gm[d] = -sign * h;
-            const auto rp =
-                direct_update<M>(mp, opt.interface, y, shifted_input(inputs[i], fr, gp, n_sub));
-            const auto rm =
-                direct_update<M>(mp, opt.interface, y, shifted_input(inputs[i], fr, gm, n_sub));
+            const auto in_p = shifted_input(inputs[i], fr, gp, n_sub);
+            const auto in_m = shifted_input(inputs[i], fr, gm, n_sub);
+            const auto rp = direct_update<M>(mp, opt.interface, y, in_p);
+            const auto rm = direct_update<M>(mp, opt.interface, y, in_m);
             err.ok = err.ok && rp.stats.status > 0.5 && rm.stats.status > 0.5;
-            const auto tp = rp.traction();
-            const auto tm = rm.traction();
+            const auto tp = rp.contact_traction(in_p);
+            const auto tm = rm.contact_traction(in_m);
             for (int comp = 0; comp < 3; ++comp) {
                 fd[c][comp] = (tp[comp] - tm[comp]) / (2.0 * h);
                 if (comp > 0) {
@@ -234,6 +248,20 @@ ColumnErrors jacobian_errors(const typename M::Params& mp, const StateVec<double
         }
     }
     return err;
+}
+
+template <class M>
+ColumnErrors jacobian_errors(const typename M::Params& mp, const StateVec<double, M::n_state>& y,
+                             int ndim, const ContactOptions& opt, bool reference = true) {
+    std::vector<PointInput> inputs(2);
+    for (int i = 0; i < 2; ++i) {
+        inputs[i].dg1 = 1.0e-5 * (1.0 + 0.3 * i);
+        inputs[i].dg2 = ndim == 3 ? 4.0e-6 * (1.0 - 0.7 * i) : 0.0;
+        inputs[i].t_N = -100.0 - 3.0 * i;
+        inputs[i].s_p1 = -52.0 + i;
+        inputs[i].s_p2 = -47.0 - i;
+    }
+    return jacobian_errors<M>(mp, y, ndim, opt, inputs, reference);
 }
 
 inline ContactOptions jacobian_options(InterfaceFormulation f, int ndim, bool adaptive) {

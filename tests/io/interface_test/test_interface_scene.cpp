@@ -413,7 +413,7 @@ TEST(InterfaceScene, UnknownKeysTypesAndChoicesAreErrors) {
     expect_error(with_in(minimal, "interface", "model = \"linear-elastic\""), "interface.model",
                  "\"hypoplasticity\" | \"sanisand\"");
     expect_error(with_in(minimal, "interface", "jacobian = \"exact\""), "interface.jacobian",
-                 "\"perturbation\" | \"full-perturbation\" | \"analytical\"");
+                 "\"perturbation\" | \"central\" | \"full-perturbation\" | \"analytical\"");
     expect_error(with_in(minimal, "interface", "subincrement = \"variable\""),
                  "interface.subincrement", "\"fixed\" | \"adaptive\"");
     expect_error(
