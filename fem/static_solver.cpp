@@ -50,6 +50,10 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
     const double tol_u = settings_.displacement_tolerance;
     double last_correction = std::numeric_limits<double>::infinity();
     double rel = norm2(residual_) / reference_force_;
+    // Each re-gather of the in-plane targets starts a new Newton solve from the converged
+    // iterate: the iteration budget is per solve (a budget shared with the gathers ended
+    // increments that had converged to 1e-10 twice and were restarted by a gather).
+    int solve_start = 0;
     for (int it = 0;; ++it) {
         info.residuals.push_back(rel);
         if (on_iteration) {
@@ -64,7 +68,7 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
         const bool converged =
             rel <= 1.0e-2 * tol_r || (it > 0 && rel <= tol_r && last_correction <= tol_u);
         const bool stagnated = !converged && settings_.stagnation_tolerance > 0.0 &&
-                               r.size() >= 4 && rel <= settings_.stagnation_tolerance &&
+                               it - solve_start >= 3 && rel <= settings_.stagnation_tolerance &&
                                rel > 0.5 * r[r.size() - 4];
         if (converged || stagnated) {
             if (!targets_settled(info, error)) {
@@ -77,6 +81,7 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
                 }
                 rel = norm2(residual_) / reference_force_;
                 last_correction = std::numeric_limits<double>::infinity();
+                solve_start = it + 1;
                 continue;
             }
             if (stagnated) {
@@ -85,11 +90,15 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
             }
             return true;
         }
-        if (it == settings_.max_iterations) {
-            error = fmt::format("Newton did not converge in {} iterations (relative residual "
-                                "{:.3e}, last relative correction {:.3e}; residuals {})",
-                                settings_.max_iterations, rel, last_correction,
-                                residual_trace(info.residuals));
+        if (it - solve_start == settings_.max_iterations) {
+            error = fmt::format(
+                "Newton did not converge in {} iterations{} (relative residual "
+                "{:.3e}, last relative correction {:.3e}; residuals {})",
+                settings_.max_iterations,
+                info.gathers > 0
+                    ? fmt::format(" after {} re-gathers of the in-plane targets", info.gathers)
+                    : std::string(),
+                rel, last_correction, residual_trace(info.residuals));
             return false;
         }
         if (!newton_step(t_end, rel, last_correction, info, error)) {

@@ -120,7 +120,8 @@ struct IncrementInfo {
 // One Newton iteration's tangent against central differences of the residual along the
 // Newton direction c (settings.check_tangent): (R(u + h c) - R(u - h c)) / 2h against -K c,
 // scaled so that the largest entry of h c is `step` metres. `mismatch` is the relative norm
-// of the difference, `pairs` the same for each contact pair's own forces and tangent entries.
+// of the difference, `pairs` the same for each contact pair's own forces and tangent entries,
+// `rest` for everything else.
 struct TangentCheckRecord {
     int stage = 0;
     double t_end = 0.0;
@@ -130,6 +131,9 @@ struct TangentCheckRecord {
     int worst_dof = -1; // global DOF (dim * node + direction) of the largest difference
     double worst_difference = 0.0, worst_tangent = 0.0;
     std::vector<double> pairs; // per contact pair, in the order they were added
+    // The rest (continuum, springs, loads): the global differences minus the pairs'.
+    double rest = 0.0;
+    int rest_worst_dof = -1;
 };
 
 // The out-of-balance force of the initial state (stresses, loads and supports of the first

@@ -88,6 +88,9 @@ void StaticSolver::check_tangent(double t_end, const IncrementInfo& info) {
             ok = residual_pass(t_end, shifted, error);
             r_side[side] = residual_;
         }
+        // Everything but the pairs (continuum, springs): the global change minus the pairs'.
+        std::vector<double> rest_fd(n_eq, 0.0), rest_kc(n_eq, 0.0);
+        bool rest_ok = ok;
         if (ok) {
             std::vector<double> fd(n_eq);
             double worst = -1.0;
@@ -101,6 +104,10 @@ void StaticSolver::check_tangent(double t_end, const IncrementInfo& info) {
                 }
             }
             rec.mismatch = relative(fd, minus_kc);
+            for (std::size_t i = 0; i < n_eq; ++i) {
+                rest_fd[i] = -fd[i];
+                rest_kc[i] = -minus_kc[i];
+            }
             for (std::size_t d = 0; d < du_.size(); ++d) { // equation -> global DOF
                 if (dofs_.equation[d] == rec.worst_dof) {
                     rec.worst_dof = static_cast<int>(d);
@@ -122,16 +129,35 @@ void StaticSolver::check_tangent(double t_end, const IncrementInfo& info) {
             }
             if (!pair_ok) {
                 rec.pairs.push_back(std::numeric_limits<double>::quiet_NaN());
+                rest_ok = false;
                 continue;
             }
-            std::vector<double> fd, kc_p;
+            std::vector<double> fd(n_eq, 0.0), kc_p(n_eq, 0.0);
             for (std::size_t d = 0; d < du_.size(); ++d) {
-                if (dofs_.equation[d] >= 0) {
-                    fd.push_back((f_side[0][d] - f_side[1][d]) / (2.0 * h));
-                    kc_p.push_back(pair_kc[p][d]);
+                const int eq = dofs_.equation[d];
+                if (eq >= 0) {
+                    const auto e = static_cast<std::size_t>(eq);
+                    fd[e] = (f_side[0][d] - f_side[1][d]) / (2.0 * h);
+                    kc_p[e] = pair_kc[p][d];
+                    rest_fd[e] -= fd[e];
+                    rest_kc[e] -= kc_p[e];
                 }
             }
             rec.pairs.push_back(relative(fd, kc_p));
+        }
+        rec.rest = rest_ok ? relative(rest_fd, rest_kc) : std::numeric_limits<double>::quiet_NaN();
+        double worst_rest = -1.0;
+        for (std::size_t i = 0; i < n_eq && rest_ok; ++i) {
+            if (std::abs(rest_fd[i] - rest_kc[i]) > worst_rest) {
+                worst_rest = std::abs(rest_fd[i] - rest_kc[i]);
+                rec.rest_worst_dof = static_cast<int>(i);
+            }
+        }
+        for (std::size_t d = 0; d < du_.size() && rec.rest_worst_dof >= 0; ++d) {
+            if (dofs_.equation[d] == rec.rest_worst_dof) {
+                rec.rest_worst_dof = static_cast<int>(d);
+                break;
+            }
         }
         tangent_checks_.push_back(std::move(rec));
     }

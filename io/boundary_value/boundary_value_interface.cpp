@@ -93,7 +93,9 @@ const std::vector<std::string_view>& boundary_value_interface_keys() {
                                                        "void_ratio",
                                                        "intergranular_strain",
                                                        "back_stress",
-                                                       "fabric"};
+                                                       "fabric",
+                                                       "model_tolerance",
+                                                       "newton_jacobian"};
     return keys;
 }
 
@@ -146,6 +148,12 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     }
     pair.interface_material = f.material.choice;
     pair.options = f.contact;
+    // The inner solves' tolerances set the noise of the Eq. 37 differences (docs/interface.md).
+    InterfaceSettings& is = pair.options.interface;
+    is.model.tolerance = t.number_or("model_tolerance", is.model.tolerance, Bounds::open(0.0, 1.0));
+    is.newton_jacobian = t.choice_or("newton_jacobian", "rate", {"rate", "perturbation"}) == "rate"
+                             ? NewtonJacobian::rate
+                             : NewtonJacobian::perturbation;
     pair.initial_state = state_function(t, f.material, f.stress_start, soil.void_ratio);
     // Check the state keys now, with the slave body's initial stress.
     pair.initial_state(vertical_local(soil.stress, mesh.dim()));

@@ -20,7 +20,7 @@ void write_tangent_checks(const std::filesystem::path& dir, const fem::StaticSol
     for (const auto& pair : solver.contacts()) {
         out << ",pair." << pair->spec().name;
     }
-    out << '\n';
+    out << ",rest,rest_worst_node,rest_worst_direction\n";
     for (const fem::TangentCheckRecord& r : solver.tangent_checks()) {
         const int node = r.worst_dof >= 0 ? r.worst_dof / dim : -1;
         double x[3] = {0.0, 0.0, 0.0};
@@ -34,7 +34,9 @@ void write_tangent_checks(const std::filesystem::path& dir, const fem::StaticSol
         for (const double m : r.pairs) {
             out << fmt::format(",{:.6e}", m);
         }
-        out << '\n';
+        out << fmt::format(",{:.6e},{},{}\n", r.rest,
+                           r.rest_worst_dof >= 0 ? r.rest_worst_dof / dim : -1,
+                           r.rest_worst_dof >= 0 ? r.rest_worst_dof % dim : -1);
     }
     if (!out) {
         throw std::runtime_error(fmt::format("{}: write failed", path.string()));

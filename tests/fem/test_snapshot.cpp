@@ -89,6 +89,7 @@ TEST(Snapshot, ResumeInsideACutStep) {
     ShearBoxOptions o;
     o.steps = 1;
     o.displacement = 1.0e-3;
+    o.max_iterations = 5; // a budget that the whole millimetre in one increment exceeds
     ShearBox probe = build_shear_box(o);
     ASSERT_TRUE(probe.solver->run_stage(probe.consolidation).ok);
     int cut = 0, increments = 0;
