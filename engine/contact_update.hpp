@@ -104,12 +104,20 @@ public:
         if (order_.size() != P * blocks) {
             order_.assign(P * blocks, detail::LaneKey{});
         }
-        auto run = [&](detail::LaneKey* keys, std::size_t n) {
+        // The Jacobian lanes of an adaptive run have a reference lane of their own (the base
+        // re-run on their discretisation), so they may solve Algorithm 1 more tightly than the
+        // base: InterfaceSettings::jacobian_tolerance.
+        InterfaceSettings lane_settings = opt.interface;
+        if (rerun && opt.interface.jacobian_tolerance > 0.0) {
+            lane_settings.tolerance = opt.interface.jacobian_tolerance;
+            lane_settings.newton_jacobian = NewtonJacobian::perturbation;
+        }
+        auto run = [&](detail::LaneKey* keys, std::size_t n, const InterfaceSettings& s) {
             if (opt.simd) {
-                detail::order_by_work<M>(opt.interface, lanes_, keys, n);
-                detail::run_lanes_packed<M>(mp, opt.interface, lanes_, {keys, n});
+                detail::order_by_work<M>(s, lanes_, keys, n);
+                detail::run_lanes_packed<M>(mp, s, lanes_, {keys, n});
             } else {
-                detail::run_lanes_scalar<M>(mp, opt.interface, lanes_, {keys, n});
+                detail::run_lanes_scalar<M>(mp, s, lanes_, {keys, n});
             }
         };
         for_chunks(P, chunk, [&](std::size_t b, std::size_t e) {
@@ -124,11 +132,11 @@ public:
                 }
             }
             gather(cp, opt, P, 0, ndim, b, e);
-            run(keys, m);
+            run(keys, m, opt.interface);
             for (int k = 1; k < blocks; ++k) {
                 gather(cp, opt, P, k, ndim, b, e);
             }
-            run(keys + m, (blocks - 1) * m);
+            run(keys + m, (blocks - 1) * m, lane_settings);
             scatter(cp, mp, opt, P, blocks, ref, b, e);
         });
 

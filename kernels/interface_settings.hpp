@@ -57,6 +57,13 @@ struct InterfaceSettings {
     // InterfaceStats::band_clamped). The results past that point rest on an assumed thickness.
     bool clamp_band = false;
     IntegrationSettings model; // the continuum model's own integration settings
+    // Adaptive runs, > 0: Algorithm 1's tolerance in the Jacobian lanes (Eq. 37 and their
+    // reference re-run), solved with the perturbation Newton Jacobian. At the paper's tolerance
+    // the Newton iteration count changes between lanes and puts jumps into the traction that
+    // theta divides (0.17 relative column error at 3 kPa, 2.4e-4 at 1e-9). Off by default: in
+    // the coarse §6 scene it cut the cuts from 22 to 5 but cost 6x the contact time
+    // (docs/interface.md). 0: the lanes use `tolerance` and `newton_jacobian` like the base.
+    double jacobian_tolerance = 0.0;
 };
 
 // Codes of InterfaceStats::cause.

@@ -95,7 +95,8 @@ const std::vector<std::string_view>& boundary_value_interface_keys() {
                                                        "back_stress",
                                                        "fabric",
                                                        "model_tolerance",
-                                                       "newton_jacobian"};
+                                                       "newton_jacobian",
+                                                       "jacobian_tolerance"};
     return keys;
 }
 
@@ -154,6 +155,8 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     is.newton_jacobian = t.choice_or("newton_jacobian", "rate", {"rate", "perturbation"}) == "rate"
                              ? NewtonJacobian::rate
                              : NewtonJacobian::perturbation;
+    is.jacobian_tolerance =
+        t.number_or("jacobian_tolerance", is.jacobian_tolerance, Bounds::closed_open(0.0, 1.0));
     pair.initial_state = state_function(t, f.material, f.stress_start, soil.void_ratio);
     // Check the state keys now, with the slave body's initial stress.
     pair.initial_state(vertical_local(soil.stress, mesh.dim()));

@@ -180,6 +180,14 @@ ColumnErrors jacobian_errors(const typename M::Params& mp, const StateVec<double
                              const std::vector<PointInput>& inputs, bool reference = true,
                              double h = 1.0e-7) {
     const Frame fr = tilted_frame(ndim);
+    // The update the lanes differentiate: an adaptive run's Jacobian lanes solve Algorithm 1 to
+    // jacobian_tolerance with the perturbation Newton Jacobian (engine/contact_update.hpp).
+    InterfaceSettings ref_s = opt.interface;
+    if (ref_s.adaptive && opt.jacobian != ContactJacobian::analytical &&
+        ref_s.jacobian_tolerance > 0.0) {
+        ref_s.tolerance = ref_s.jacobian_tolerance;
+        ref_s.newton_jacobian = NewtonJacobian::perturbation;
+    }
     ContactPoints<M> cp(inputs.size(), ndim);
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         cp.set_state(i, y);
@@ -209,8 +217,8 @@ ColumnErrors jacobian_errors(const typename M::Params& mp, const StateVec<double
             gm[d] = -sign * h;
             const auto in_p = shifted_input(inputs[i], fr, gp, n_sub);
             const auto in_m = shifted_input(inputs[i], fr, gm, n_sub);
-            const auto rp = direct_update<M>(mp, opt.interface, y, in_p);
-            const auto rm = direct_update<M>(mp, opt.interface, y, in_m);
+            const auto rp = direct_update<M>(mp, ref_s, y, in_p);
+            const auto rm = direct_update<M>(mp, ref_s, y, in_m);
             err.ok = err.ok && rp.stats.status > 0.5 && rm.stats.status > 0.5;
             const auto tp = rp.contact_traction(in_p);
             const auto tm = rm.contact_traction(in_m);

@@ -30,6 +30,7 @@ ContactOptions wall_options(ContactJacobian scheme) {
     opt.interface.adaptive = true;
     opt.interface.shear_band_thickness = 0.006;
     opt.jacobian = scheme;
+    opt.interface.jacobian_tolerance = 1.0e-9; // smooth lanes (see the last test)
     return opt;
 }
 
@@ -93,18 +94,35 @@ TEST(ContactJacobianLowStress, TargetsTiedToTheNormalTractionFollowItsPerturbati
 }
 
 // Eq. 37's forward differences carry theta |t''| / 2; along the normal theta k_N is 1 % of
-// t_N, and at these stresses that is an error of 5-25 % in the normal coupling columns
+// t_N, and at these stresses that is an error of 5-11 % in the normal coupling columns
 // (measured). The central scheme combines the slave (+theta) and master (-theta) lanes of each
-// axis into one central difference: the same lanes, second order (measured 1.1e-4 and 2.0e-3
-// against 0.11 and 0.054). Not at -3 kPa: there both schemes and both step sizes of theta
-// (1.5e-8 .. 1e-6) give 0.17, the noise of the inner solves at the default tolerances.
+// axis into one central difference: the same lanes, second order (measured 2.4e-4 .. 5.8e-4).
 TEST(ContactJacobianLowStress, CentralSchemeIsSecondOrderWhereEq37IsNot) {
-    for (const double t_N : {-10.0, -1.5}) {
+    for (const double t_N : {-10.0, -3.0, -1.5}) {
         const auto forward = wall_errors(t_N, 1.0e-4, ContactJacobian::perturbation);
         const auto central = wall_errors(t_N, 1.0e-4, ContactJacobian::central);
         ASSERT_TRUE(forward.ok && central.ok);
         EXPECT_GT(forward.eq37, 2.0e-2) << t_N; // the check can see the difference
-        EXPECT_LT(central.eq37, 1.0e-2) << t_N;
-        EXPECT_LT(central.eq37, 0.2 * forward.eq37) << t_N;
+        EXPECT_LT(central.eq37, 1.0e-3) << t_N;
     }
+}
+
+// At the paper's Algorithm 1 tolerance (2e-3, rate Newton Jacobian) the Newton iteration count
+// changes between lanes and the traction jumps by about the tolerance: at 3 kPa the columns
+// were 0.17 off central differences for every theta from 1.5e-8 to 1e-6 m and for either
+// scheme. Solved to jacobian_tolerance = 1e-9 (perturbation Newton Jacobian) in the Jacobian
+// lanes and their reference, the columns are the derivative of that smooth update. The tests
+// above use that setting: without it the forward/central comparison drowns in this noise.
+TEST(ContactJacobianLowStress, TightlySolvedLanesRemoveTheNewtonNoise) {
+    auto loose = wall_options(ContactJacobian::central);
+    loose.interface.jacobian_tolerance = 0.0;
+    const auto in = wall_points(-3.0, 1.0e-4);
+    const auto y = hypo_state(-3.0, 0.5, 0.646);
+    const double h = 3.0e-4 / 1.0e8;
+    const auto noisy = jacobian_errors<Hypoplasticity>(karlsruhe_rough(), y, 3, loose, in, true, h);
+    const auto tight = jacobian_errors<Hypoplasticity>(
+        karlsruhe_rough(), y, 3, wall_options(ContactJacobian::central), in, true, h);
+    ASSERT_TRUE(noisy.ok && tight.ok);
+    EXPECT_GT(noisy.eq37, 5.0e-2); // measured 0.17
+    EXPECT_LT(tight.eq37, 1.0e-3); // measured 2.4e-4
 }
