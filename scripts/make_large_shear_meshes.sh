@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Meshes of the large-scale cyclic interface shear test (paper §6) from
 # scenes/meshes/large-shear.geo (all hexahedra, Gmsh MSH 4.1, ASCII):
-#   scenes/meshes/large-shear-coarse.msh  8 x 3 x 12 soil elements (scenes/large-shear/large-shear-coarse.toml)
+#   scenes/meshes/large-shear-coarse.msh  8 x 3 x 12 soil elements (scenes/large-shear-coarse.toml)
 #   scenes/meshes/large-shear-fine.msh   24 x 5 x 32 soil elements (the four model scenes in scenes/large-shear/)
 # Needs gmsh (Debian package gmsh; made with Gmsh 4.8.4). Usage: scripts/make_large_shear_meshes.sh
 set -euo pipefail
