@@ -75,6 +75,7 @@ struct ContactPairCounters {
     double lanes = 0.0;         // Algorithm 1 runs incl. Jacobian lanes
     double subincrements = 0.0; // Algorithm 1 sub-increments of the base lanes
     double constitutive_evaluations = 0.0;
+    double model_substeps = 0.0; // substeps of the interface model's own integration
     double interface_newton_iterations = 0.0;
     long failed_evaluations = 0;
     long band_clamped = 0;

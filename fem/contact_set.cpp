@@ -60,6 +60,7 @@ ContactSetCounters ContactSet::counters() const {
         s.lanes += k.lanes;
         s.subincrements += k.subincrements;
         s.constitutive_evaluations += k.constitutive_evaluations;
+        s.model_substeps += k.model_substeps;
         s.failed_evaluations += k.failed_evaluations;
         s.relaxed_reruns += k.relaxed_reruns;
         s.relaxed_point_updates += k.relaxed_point_updates;

@@ -231,6 +231,7 @@ protected:
         counters_.lanes += rep.lanes;
         counters_.subincrements += rep.subincrements;
         counters_.constitutive_evaluations += rep.constitutive_evaluations;
+        counters_.model_substeps += rep.model_substeps;
         counters_.interface_newton_iterations += rep.newton_iterations;
         counters_.band_clamped += static_cast<long>(rep.band_clamped);
         counters_.dropped_columns += rep.dropped_columns;

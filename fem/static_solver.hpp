@@ -61,6 +61,7 @@ struct SolverCounters {
     double contact_lanes = 0.0;         // Algorithm 1 runs incl. Jacobian lanes
     double contact_subincrements = 0.0; // Algorithm 1 sub-increments (base lanes)
     double contact_constitutive_evaluations = 0.0;
+    double contact_model_substeps = 0.0; // substeps of the interface models' own integration
     long contact_failures = 0;   // engine updates with a failed point (the increment was cut)
     long line_search_steps = 0;  // residual passes spent halving Newton steps
     long stagnation_accepts = 0; // increments accepted at the inner solves' noise floor

@@ -52,6 +52,7 @@ const SolverCounters& StaticSolver::counters() const {
     counters_.contact_lanes = c.lanes;
     counters_.contact_subincrements = c.subincrements;
     counters_.contact_constitutive_evaluations = c.constitutive_evaluations;
+    counters_.contact_model_substeps = c.model_substeps;
     counters_.contact_failures = c.failed_evaluations;
     counters_.contact_relaxed_reruns = c.relaxed_reruns;
     counters_.contact_relaxed_point_updates = c.relaxed_point_updates;

@@ -78,13 +78,16 @@ void StaticSolver::check_tangent(double t_end, const IncrementInfo& info) {
         rec.step = step;
         rec.mismatch = std::numeric_limits<double>::quiet_NaN();
         std::vector<double> shifted(du_.size());
-        std::vector<double> r_side[2];
-        bool ok = true;
-        for (int side = 0; side < 2 && ok; ++side) {
+        const auto shift = [&](int side) { // du + h c (side 0) or du - h c (side 1)
             const double sign = side == 0 ? 1.0 : -1.0;
             for (std::size_t d = 0; d < du_.size(); ++d) {
                 shifted[d] = du_[d] + sign * h * c_full[d];
             }
+        };
+        std::vector<double> r_side[2];
+        bool ok = true;
+        for (int side = 0; side < 2 && ok; ++side) {
+            shift(side);
             ok = residual_pass(t_end, shifted, error);
             r_side[side] = residual_;
         }
@@ -120,10 +123,7 @@ void StaticSolver::check_tangent(double t_end, const IncrementInfo& info) {
             std::vector<double> f_side[2];
             bool pair_ok = true;
             for (int side = 0; side < 2 && pair_ok; ++side) {
-                const double sign = side == 0 ? 1.0 : -1.0;
-                for (std::size_t d = 0; d < du_.size(); ++d) {
-                    shifted[d] = du_[d] + sign * h * c_full[d];
-                }
+                shift(side);
                 f_side[side].assign(du_.size(), 0.0);
                 pair_ok = pairs[p]->evaluate(shifted, f_side[side], error);
             }

@@ -283,6 +283,7 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
         k["contact_point_updates"] = rounded(c.contact_point_updates);
         k["contact_lanes"] = rounded(c.contact_lanes);
         k["contact_constitutive_evaluations"] = rounded(c.contact_constitutive_evaluations);
+        k["contact_model_substeps"] = rounded(c.contact_model_substeps);
         k["contact_pairings"] = c.contact_pairings;
         k["contact_pattern_rebuilds"] = c.contact_pattern_rebuilds;
         k["contact_failures"] = c.contact_failures;
