@@ -4,7 +4,8 @@
 Usage: check_large_shear.py RUN_DIR
 
 Properties the test demands, independent of the mesh and the interface model:
-  - the run finished (summary.json status ok) and every number in history.csv is finite;
+  - the run finished (summary.json status ok) and every number in history.csv is finite
+    (empty cells are allowed: the point recorders have none in row 0);
   - the rough segment stays in contact (closed points in every wall row) under compression
     (t_n < 0);
   - at the end of each wall stage the mean shear traction on the soil points along the wall's
@@ -36,6 +37,8 @@ def main():
         rows = list(csv.DictReader(f))
     for i, r in enumerate(rows):
         for k, v in r.items():
+            if v == "":  # a column without a value in this row (point recorders in row 0)
+                continue
             if not math.isfinite(float(v)):
                 fail(f"row {i}: {k} = {v}")
     wall = [r for r in rows if int(r["stage"]) >= 5]
