@@ -34,6 +34,7 @@ struct ShearBoxOptions {
     int plate_elements = 7;
     int max_iterations = 20;                        // global Newton
     int max_gathers = SolverSettings{}.max_gathers; // 0: explicit gather (the paper's)
+    bool check_tangent = false;                     // SolverSettings::check_tangent
     std::function<void(ContactPairSpec&)> adjust;   // last changes to the contact pair
 };
 
@@ -99,6 +100,7 @@ inline ShearBox build_shear_box(const ShearBoxOptions& o) {
     SolverSettings settings;
     settings.max_iterations = o.max_iterations;
     settings.max_gathers = o.max_gathers;
+    settings.check_tangent = o.check_tangent;
     ShearBox box;
     box.solver = std::make_unique<StaticSolver>(mesh, std::vector<ElementSetMaterial>{plate, soil},
                                                 settings);

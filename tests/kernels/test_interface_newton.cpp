@@ -313,3 +313,26 @@ TEST(InterfaceAlgorithm1, AdaptiveSubincrementsMatchFineFixedOnes) {
     // The accepted size is remembered for the next update (in units of max_subincrement).
     EXPECT_GT(ra.st.last_subincrement, 1.0);
 }
+
+// An adaptive run's forced lanes (the Jacobian lanes, engine/contact_update.hpp) take a given
+// count of equal sub-increments; where one cannot be integrated (a large shear increment at low
+// stress in a single sub-increment) the lane halves it and goes on instead of failing (a failed
+// lane used to drop its point's Jacobian columns). The result stays close to the adaptive one.
+TEST(InterfaceAlgorithm1, ForcedLaneHalvesASubincrementItCannotIntegrate) {
+    auto mp = parameter_sets::hypoplasticity_karlsruhe();
+    mp.roughness = 1.0;
+    mp.prepare();
+    InterfaceSettings s = settings(InterfaceFormulation::novel, 3, NewtonJacobian::rate);
+    s.adaptive = true;
+    s.shear_band_thickness = 0.006;
+    const auto y = hypo_state(-3.0, 0.5, 0.646);
+    const InterfaceInput<double> free{-3.0, 1.0e-3, 0.0, -1.5, -1.5, 0.0};
+    InterfaceInput<double> forced = free;
+    forced.forced_subincrements = 1.0;
+    const auto base = direct_update<Hypoplasticity>(mp, s, y, free);
+    ASSERT_EQ(base.stats.status, lane_status::ok);
+    const auto lane = direct_update<Hypoplasticity>(mp, s, y, forced);
+    ASSERT_EQ(lane.stats.status, lane_status::ok);
+    EXPECT_GT(lane.stats.subincrements, 1.0); // it had to split
+    EXPECT_NEAR(lane.st.y[3], base.st.y[3], 0.05 * std::abs(base.st.y[3]));
+}
