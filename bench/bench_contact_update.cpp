@@ -76,7 +76,8 @@ Mat3 rotate(const Mat3& q, const Mat3& a) {
 
 // A sampled continuum state turned into an interface state: rotated about axis 1 (the normal)
 // so that sigma_23 = 0. Every symmetric tensor of the state (stress, and the 6-blocks after the
-// void ratio: h; alpha, z, alpha_in) turns with it, so the state stays consistent.
+// void ratio: h; alpha, z, alpha_in) turns with it, so the state stays consistent; a trailing
+// scalar (the carried substep size) stays.
 template <int NS>
 StateVec<double, NS> to_interface_state(StateVec<double, NS> y) {
     const Sym<double> s = stress_of(y);
@@ -85,7 +86,7 @@ StateVec<double, NS> to_interface_state(StateVec<double, NS> y) {
     const Mat3 q = {{{1.0, 0.0, 0.0}, {0.0, c, sn}, {0.0, -sn, c}}};
     set_stress(y, to_voigt(rotate(q, to_matrix(s))));
     y[5] = 0.0; // exactly zero (round-off)
-    static_assert((NS - 7) % 6 == 0, "state: stress, void ratio, then symmetric tensors");
+    static_assert((NS - 7) % 6 <= 1, "state: stress, void ratio, symmetric tensors, a scalar");
     for (int off = 7; off + 6 <= NS; off += 6) {
         set_sym_at(y, off, to_voigt(rotate(q, to_matrix(sym_at(y, off)))));
     }

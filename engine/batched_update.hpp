@@ -84,7 +84,7 @@ void update_range(MaterialPoints<M>& mp, const typename M::Params& params, const
     }
 }
 
-// SIMD path with lane refill, for models integrated by the Heun stepper: a lane whose point
+// SIMD path with lane refill, for models integrated by integrate_explicit: a lane whose point
 // has finished its increment takes the next pending point at once, so a point that needs many
 // substeps holds up only its own lane, not the whole batch. Each point's arithmetic is the same
 // as in material_update(), so the result does not depend on which lane or when it ran.
@@ -96,7 +96,7 @@ void update_range_refill(MaterialPoints<M>& mp, const typename M::Params& params
     using B = simd::batch;
     const IntegrationSettings& s = opt.settings;
     alignas(64) double y[N][W], y0[N][W], de[6][W];
-    alignas(64) double t[W], dt[W], fixed[W], st[W], sub[W], rej[W], rate[W];
+    alignas(64) double t[W], dt[W], fixed[W], st[W], sub[W], rej[W], rate[W], ideal[W];
     bool input_ok[W];
     std::size_t idx[W];
     bool busy[W];
@@ -122,10 +122,10 @@ void update_range_refill(MaterialPoints<M>& mp, const typename M::Params& params
             de[j][l] = dd[j];
         }
         const SubstepControl<double> c{mp.fixed_substeps()[i], opt.initial_substep};
-        heun_begin(s, c, t[l], dt[l]);
+        substep_begin<M, double>(s, c, ys, dd, t[l], dt[l]);
         fixed[l] = c.fixed_substeps;
         st[l] = stats.status;
-        sub[l] = rej[l] = rate[l] = 0.0;
+        sub[l] = rej[l] = rate[l] = ideal[l] = 0.0;
         input_ok[l] = ok;
         idx[l] = i;
         busy[l] = true;
@@ -147,10 +147,15 @@ void update_range_refill(MaterialPoints<M>& mp, const typename M::Params& params
             ys[k] = y[k][l];
             ys0[k] = y0[k][l];
         }
-        UpdateStats<double> stats{st[l], sub[l], rej[l], rate[l]};
+        UpdateStats<double> stats{st[l], sub[l], rej[l], rate[l], ideal[l]};
         if ((1.0 - t[l]) > 1.0e-12) { // ran out of substeps
             stats.status = lane_status::failed;
         }
+        Sym<double> d;
+        for (int j = 0; j < 6; ++j) {
+            d[j] = de[j][l];
+        }
+        carry_substep<M, double>(ys, d, stats.ideal_substep, fixed[l] > 0.5);
         material_finish<M, double>(ys0, ys, input_ok[l], stats);
         const std::size_t i = idx[l];
         for (int k = 0; k < N; ++k) {
@@ -187,7 +192,7 @@ void update_range_refill(MaterialPoints<M>& mp, const typename M::Params& params
         dtb = B::load_aligned(dt);
         fixedb = B::load_aligned(fixed) > 0.5;
         stats = UpdateStats<B>{B::load_aligned(st), B::load_aligned(sub), B::load_aligned(rej),
-                               B::load_aligned(rate)};
+                               B::load_aligned(rate), B::load_aligned(ideal)};
     };
     auto to_arrays = [&] {
         for (int k = 0; k < N; ++k) {
@@ -199,6 +204,7 @@ void update_range_refill(MaterialPoints<M>& mp, const typename M::Params& params
         stats.substeps.store_aligned(sub);
         stats.rejected.store_aligned(rej);
         stats.rate_evaluations.store_aligned(rate);
+        stats.ideal_substep.store_aligned(ideal);
     };
     to_batches();
     alignas(64) double attempts_d[W] = {};
@@ -208,7 +214,7 @@ void update_range_refill(MaterialPoints<M>& mp, const typename M::Params& params
         if (simd::none(active)) {
             break; // every lane idle: no point pending
         }
-        heun_attempt<M, B>(params, s, fixedb, yb, tb, dtb, deb, stats, active);
+        substep_attempt<M, B>(params, s, fixedb, yb, tb, dtb, deb, stats, active);
         attempts_b = attempts_b + simd::select(active, B(1.0), B(0.0));
         const simd::batch_mask finished =
             active && (((B(1.0) - tb) <= 1.0e-12) || (attempts_b >= double(s.max_substeps)));
@@ -247,7 +253,7 @@ UpdateReport batched_update(MaterialPoints<M>& mp, const typename M::Params& par
     const std::size_t chunk = ((opt.chunk_points + lanes - 1) / lanes) * lanes;
     for_chunks(P, chunk, [&](std::size_t b, std::size_t e) {
         if (opt.simd) {
-            if constexpr (M::heun_stepper) {
+            if constexpr (M::explicit_stepper) {
                 detail::update_range_refill<M>(mp, params, opt, b, e);
             } else {
                 detail::update_range<M, simd::batch>(mp, params, opt, b, e);

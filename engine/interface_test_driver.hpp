@@ -39,7 +39,13 @@ struct InterfaceTestSpec {
     NormalControl control = NormalControl::constant_stress;
     double normal_stiffness = 0.0; // K (kPa/m), CNS only
     ContactOptions contact;        // formulation, sub-increments, Jacobian scheme, SIMD
-    UpdateOptions sample_update;   // the sample's integration settings, SIMD
+    // The sample's integration settings, SIMD; by default the interface model's (both are the
+    // same soil in a series system, kernels/model_api.hpp contact_model_integration()).
+    UpdateOptions sample_update = [] {
+        UpdateOptions o;
+        o.settings = contact_model_integration();
+        return o;
+    }();
     // Relative residual of the step equations, |R| / max(|t_N|, 1 kPa). The interface response
     // is only piecewise smooth (sub-increment counts, Newton stops, loading branches of the
     // model), with jumps of up to ~2e-5 relative measured: tighter tolerances can stall.

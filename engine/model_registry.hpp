@@ -146,6 +146,16 @@ inline int state_size(const MaterialChoice& m) {
     return std::visit(
         [](const auto& p) { return model_of<std::decay_t<decltype(p)>>::type::n_state; }, m);
 }
+// The part of the state results report: stress, void ratio and the history blocks, without
+// integration data after them (the carried substep size, kernels/explicit_integration.hpp).
+inline int reported_state_size(const MaterialChoice& m) {
+    return std::visit(
+        [](const auto& p) {
+            using E = ModelEntry<typename model_of<std::decay_t<decltype(p)>>::type>;
+            return 7 + 6 * static_cast<int>(E::history_prefixes.size());
+        },
+        m);
+}
 inline std::string model_name(const MaterialChoice& m) {
     return std::visit(
         [](const auto& p) { return std::string(model_of<std::decay_t<decltype(p)>>::type::name); },

@@ -201,10 +201,12 @@ public:
 
 private:
     // The model state's symmetric tensors: the stress and every history block of six
-    // (kernels/model_api.hpp: stress 0..5, void ratio 6, blocks from 7).
+    // (kernels/model_api.hpp: stress 0..5, void ratio 6, blocks from 7, then scalars such as
+    // the carried substep size).
     static constexpr auto tensor_offsets = [] {
         constexpr std::size_t n = ModelEntry<M>::history_prefixes.size();
-        static_assert(7 + 6 * static_cast<int>(n) == N, "history blocks of six after e");
+        static_assert(7 + 6 * static_cast<int>(n) + (CarriesSubstep<M> ? 1 : 0) == N,
+                      "history blocks of six after e, then the carried substep");
         std::array<int, n + 1> out{};
         for (std::size_t k = 0; k <= n; ++k) {
             out[k] = k == 0 ? 0 : 7 + 6 * static_cast<int>(k - 1);

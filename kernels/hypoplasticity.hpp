@@ -4,7 +4,8 @@
 // Wichtmann (2022), Eqs. 30-32. Equations and choices: docs/models.md.
 //
 // State (flat, see model_api.hpp): [0..5] T, [6] e, [7..12] h (intergranular strain, tensor
-// shear components). Mechanical sign convention throughout (compression negative).
+// shear components), [13] the substep strain carried to the next update (0 = none yet; see
+// kernels/explicit_integration.hpp). Mechanical sign convention throughout (compression negative).
 
 #include <array>
 #include <cmath>
@@ -42,10 +43,11 @@ struct HypoplasticityParams {
 
 struct Hypoplasticity {
     static constexpr const char* name = "hypoplasticity";
-    static constexpr int n_state = 13;
+    static constexpr int n_state = 14;
     static constexpr int h_index = 7;
-    // Integrated by integrate_heun: the engine may refill finished SIMD lanes.
-    static constexpr bool heun_stepper = true;
+    static constexpr int substep_index = 13;
+    // Integrated by integrate_explicit: the engine may refill finished SIMD lanes.
+    static constexpr bool explicit_stepper = true;
     static constexpr bool pressure_floor = true;
     using Params = HypoplasticityParams;
     template <class T>
@@ -184,28 +186,64 @@ struct Hypoplasticity {
         State<T> dy;
         set_stress(dy, ds);
         dy[state_index::void_ratio] = (1.0 + e) * voigt::trace(de);
-        Sym<T> dh = de;
-        if (p.intergranular_strain) {
-            const T rho_b = simd::select(g.rho > 0.0, simd::exp(p.beta_R * g.log_rho), T(0.0));
-            const T proj = simd::select(g.loading, rho_b * voigt::ddot(g.h_dir, de), T(0.0));
-            dh = voigt::axpy(de, -proj, g.h_dir);
-        } else {
-            dh = voigt::zero<T>();
-        }
-        set_sym_at(dy, h_index, dh);
+        set_sym_at(dy, h_index, p.intergranular_strain ? h_increment(p, g, de) : voigt::zero<T>());
+        dy[substep_index] = T(0.0);
         return dy;
     }
 
+    // Evolution of h (Niemunis & Herle 1997): dh = (I - rho^beta_R h_dir (x) h_dir) : de when
+    // loading (h_dir : de > 0), dh = de otherwise.
     template <class T>
-    static T local_error(const Params& p, const State<T>& /*y0*/, const State<T>& yE,
+    static Sym<T> h_increment(const Params& p, const Igs<T>& g, const Sym<T>& de) {
+        const T rho_b = simd::select(g.rho > 0.0, simd::exp(p.beta_R * g.log_rho), T(0.0));
+        const T proj = simd::select(g.loading, rho_b * voigt::ddot(g.h_dir, de), T(0.0));
+        return voigt::axpy(de, -proj, g.h_dir);
+    }
+
+    // h evolves with itself and the strain only, not with stress or void ratio: the integrator
+    // may integrate it on its own (kernels/explicit_integration.hpp, split_internal).
+    static constexpr int internal_index = h_index;
+    static bool has_internal(const Params& p) { return p.intergranular_strain; }
+    static double internal_scale(const Params& p) { return p.R; }
+    template <class T>
+    static Sym<T> internal_increment(const Params& p, const Sym<T>& h, const Sym<T>& de) {
+        // igs() without rho^chi, which h's own rate does not need
+        Igs<T> g;
+        const T hn = voigt::norm(h);
+        const T inv = simd::select(hn > 1.0e-14 * p.R, 1.0 / simd::max(hn, T(1.0e-300)), T(0.0));
+        g.h_dir = voigt::scale(h, inv);
+        g.rho = simd::min(hn / p.R, T(1.0));
+        g.log_rho = simd::log(simd::max(g.rho, T(1.0e-300)));
+        g.loading = voigt::ddot(g.h_dir, de) > 0.0;
+        return h_increment(p, g, de);
+    }
+    // Fraction of the strain de after which h : de turns positive (unloading switches to
+    // loading: the rate has a kink there); above 1 when it does not within de. Before it h
+    // moves linearly (dh = de).
+    template <class T>
+    static T internal_switch(const Params&, const Sym<T>& h, const Sym<T>& de) {
+        const T hd = voigt::ddot(h, de);
+        const T dd = voigt::ddot(de, de);
+        return simd::select((hd < 0.0) && (dd > 0.0), -hd / simd::max(dd, T(1.0e-300)), T(2.0));
+    }
+    template <class T>
+    static void correct_internal(const Params& p, Sym<T>& h) {
+        const T hn = voigt::norm(h);
+        const T s = simd::select(hn > p.R, p.R / simd::max(hn, T(1.0e-300)), T(1.0));
+        h = voigt::scale(h, s);
+    }
+
+    template <class T>
+    static T local_error(const Params& p, const IntegrationSettings& s, const State<T>& yE,
                          const State<T>& yH) {
         const Sym<T> sH = stress_of(yH);
         const T sn = simd::max(voigt::norm(sH), T(1.0e-3));
         const T err_s = voigt::norm(voigt::sub(sH, stress_of(yE))) / sn;
         const T err_e = simd::abs(yH[6] - yE[6]) / simd::max(simd::abs(yH[6]), T(1.0e-3));
         T err = simd::max(err_s, err_e);
-        if (p.intergranular_strain) {
-            const T err_h = voigt::norm(voigt::sub(sym_at(yH, h_index), sym_at(yE, h_index))) / p.R;
+        if (p.intergranular_strain && s.state_error_weight > 0.0) {
+            const T err_h = voigt::norm(voigt::sub(sym_at(yH, h_index), sym_at(yE, h_index))) *
+                            (s.state_error_weight / p.R);
             err = simd::max(err, err_h);
         }
         return err;
@@ -223,10 +261,9 @@ struct Hypoplasticity {
         if (!p.intergranular_strain) {
             return;
         }
-        const Sym<T> h = sym_at(y, h_index);
-        const T hn = voigt::norm(h);
-        const T s = simd::select(hn > p.R, p.R / simd::max(hn, T(1.0e-300)), T(1.0));
-        set_sym_at(y, h_index, voigt::scale(h, s));
+        Sym<T> h = sym_at(y, h_index);
+        correct_internal(p, h);
+        set_sym_at(y, h_index, h);
     }
 
     // Tension cut-off: isotropic stress at the pressure floor; e and h follow the strain.
@@ -247,7 +284,7 @@ struct Hypoplasticity {
     static void integrate(const Params& p, const IntegrationSettings& s,
                           const SubstepControl<T>& control, State<T>& y, const Sym<T>& deps,
                           UpdateStats<T>& stats) {
-        integrate_heun<Hypoplasticity, T>(p, s, control, y, deps, stats);
+        integrate_explicit<Hypoplasticity, T>(p, s, control, y, deps, stats);
     }
 
     // The cheap rate stiffness: M(y, direction of deps) of the intergranular strain model (or

@@ -56,7 +56,8 @@ struct InterfaceSettings {
     // true: instead of stopping, hold d_s at min_band_fraction * d_s0 and go on (counted in
     // InterfaceStats::band_clamped). The results past that point rest on an assumed thickness.
     bool clamp_band = false;
-    IntegrationSettings model; // the continuum model's own integration settings
+    // the continuum model's own integration settings (contact_model_integration())
+    IntegrationSettings model = contact_model_integration();
     // Adaptive runs, > 0: Algorithm 1's tolerance in the Jacobian lanes (Eq. 37 and their
     // reference re-run), solved with the perturbation Newton Jacobian. At the paper's tolerance
     // the Newton iteration count changes between lanes and puts jumps into the traction that

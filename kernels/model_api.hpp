@@ -45,8 +45,26 @@ inline constexpr double unreliable = 0.0; // a safeguard acted (tension cut-off,
 inline constexpr double ok = 1.0;
 } // namespace lane_status
 
+// Explicit scheme of the adaptive substepping (kernels/explicit_integration.hpp).
+enum class IntegrationScheme {
+    heun,  // modified Euler 1(2): 2 rate evaluations per substep, error of the Euler result
+    rkf23, // Runge-Kutta-Fehlberg 2(3): 3 evaluations, error of the 2nd-order result,
+           // the 3rd-order result kept (local extrapolation)
+};
+
 struct IntegrationSettings {
-    double tolerance = 1.0e-3;    // accepted relative local error of one substep
+    IntegrationScheme scheme = IntegrationScheme::rkf23;
+    double tolerance = 1.0e-3; // accepted relative local error of one substep
+    // Weight of the model's internal state (hypoplasticity: h / R) in the local error beside
+    // stress and void ratio; 0 = stress and void ratio only (docs/accuracy.md).
+    double state_error_weight = 1.0;
+    // Start each update from the substep size the point ended its last one with (models that
+    // carry it, kernels/explicit_integration.hpp); false: from control.initial_substep.
+    bool carry_substep = true;
+    // Integrate a decoupled internal state (hypoplasticity's h, whose rate depends on h and the
+    // strain only) on its own, to the tolerance, inside each substep of the stress
+    // (kernels/explicit_integration.hpp); false: all of the state in one scheme.
+    bool split_internal = true;
     double min_substep = 1.0e-9;  // smallest substep, as a fraction of the increment
     int max_substeps = 200000;    // guard against runaway step collapse
     double min_pressure = 1.0e-3; // kPa; below this mean stress the tension cut-off acts
@@ -54,12 +72,29 @@ struct IntegrationSettings {
     double min_step_shrink = 0.1; // smallest shrink factor of the substep size
 };
 
+// The integration the interface models of the contact engine use (Algorithm 1 and its
+// Jacobian lanes): modified Euler with h in the same scheme and no carried substep. Their
+// Jacobian lanes replay the base's substep count as equal substeps; with the RKF23 default
+// the base takes one substep where Heun took several, and the equal-substep lanes then miss
+// the base's path (Eq. 37 columns 100 % off at 1.5-10 kPa in
+// tests/engine/test_contact_jacobian_low_stress.cpp). docs/accuracy.md, "Continuum integration".
+inline IntegrationSettings contact_model_integration() {
+    IntegrationSettings s;
+    s.scheme = IntegrationScheme::heun;
+    s.split_internal = false;
+    s.carry_substep = false;
+    return s;
+}
+
 template <class T>
 struct UpdateStats {
     T status = T(lane_status::ok);
     T substeps = T(0.0);         // accepted substeps
     T rejected = T(0.0);         // rejected substeps
     T rate_evaluations = T(0.0); // evaluations of the rate equations
+    // Step controller's estimate of the largest substep meeting the tolerance after the last
+    // accepted substep, as a fraction of this increment (0 = no estimate: fixed or cut off).
+    T ideal_substep = T(0.0);
 };
 
 template <class M>

@@ -26,8 +26,8 @@ struct Sanisand {
     static constexpr int alpha_index = sanisand::alpha_index;
     static constexpr int z_index = sanisand::z_index;
     static constexpr int alpha_in_index = sanisand::alpha_in_index;
-    // Integrated by integrate_heun: the engine may refill finished SIMD lanes.
-    static constexpr bool heun_stepper = false;
+    // Integrated by integrate_explicit: the engine may refill finished SIMD lanes.
+    static constexpr bool explicit_stepper = false;
     static constexpr bool pressure_floor = true;
     using Params = SanisandParams;
     template <class T>
@@ -263,8 +263,8 @@ struct Sanisand {
             const Mask valid = admissible(P, s, tr.yE) && admissible(P, s, tr.yH);
             T err = local_error(P, tr.yE, tr.yH);
             err = simd::select(simd::isfinite(err), err, T(1.0e30));
-            // As in integrate_heun: an admissible substep of the smallest size is taken even when
-            // it misses the tolerance (the capped h right after a reversal is not smooth), and
+            // As in integrate_explicit: an admissible substep of the smallest size is taken even
+            // when it misses the tolerance (the capped h right after a reversal is not smooth), and
             // the lane is flagged unreliable rather than cut off.
             const Mask accurate = fixed || (err <= s.tolerance);
             const Mask forced = active && valid && !accurate && (dtl <= s.min_substep);

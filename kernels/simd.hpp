@@ -86,6 +86,9 @@ inline double atan(double x) {
 inline double ceil(double x) {
     return std::ceil(x);
 }
+inline double cbrt(double x) {
+    return std::cbrt(x);
+}
 inline bool isfinite(double x) {
     return std::isfinite(x);
 }
@@ -144,6 +147,9 @@ inline batch atan(const batch& x) {
 }
 inline batch ceil(const batch& x) {
     return xsimd::ceil(x);
+}
+inline batch cbrt(const batch& x) {
+    return xsimd::cbrt(x);
 }
 inline batch_mask isfinite(const batch& x) {
     return xsimd::isfinite(x);

@@ -151,6 +151,20 @@ int run_cli(int argc, const char* const* argv) {
                      "Norm of every point's strain increment")
         ->capture_default_str();
     bench_cmd
+        ->add_option("--scheme", bench.scheme,
+                     "Substepping of the continuum models: rkf23 (Runge-Kutta-Fehlberg 2(3)) | "
+                     "heun (modified Euler 1(2))")
+        ->check(CLI::IsMember({"rkf23", "heun"}))
+        ->capture_default_str();
+    bench_cmd
+        ->add_option("--tolerance", bench.tolerance,
+                     "Relative local error tolerance of one substep")
+        ->check(CLI::Range(1.0e-12, 0.5))
+        ->capture_default_str();
+    bench_cmd->add_flag("--cold", bench.cold,
+                        "Every repetition starts without a carried substep size (as the first "
+                        "increment of a run); default: from the size the warm-up ended with");
+    bench_cmd
         ->add_option("--jacobian", bench.jacobian,
                      "Interface Jacobian: perturbation (Eq. 37) | central (Eq. 37's lanes as "
                      "central differences) | full-perturbation (Eqs. 39-40) | analytical (Eq. B3)")

@@ -1,5 +1,6 @@
 #include "io/cli/kernel_bench.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -36,9 +37,16 @@ Timing time_updates(const typename M::Params& params, const KernelBenchOptions& 
     fill_samples(mp, params, spec);
     UpdateOptions opt;
     opt.simd = !o.scalar;
+    opt.settings.scheme = o.scheme == "heun" ? IntegrationScheme::heun : IntegrationScheme::rkf23;
+    opt.settings.tolerance = o.tolerance;
 
     Timing t;
     t.last = batched_update(mp, params, opt); // warm-up, untimed
+    if constexpr (CarriesSubstep<M>) {
+        if (!o.cold) { // the size the same increment ended with, as the next one would start
+            std::copy_n(mp.trial(M::substep_index), mp.padded(), mp.committed(M::substep_index));
+        }
+    }
     const auto t0 = Clock::now();
     do {
         t.last = batched_update(mp, params, opt);
@@ -129,6 +137,9 @@ nlohmann::ordered_json run_kernel_bench(const KernelBenchOptions& o) {
     j["roughness"] = o.roughness;
     j["strain_increment"] = o.strain_increment;
     j["committed"] = false;
+    j["scheme"] = o.scheme;
+    j["tolerance"] = o.tolerance;
+    j["carried_substep"] = !o.cold;
     j["updates"] = t.updates;
     j["wall_s"] = t.wall_s;
     j["evaluations"] = static_cast<long long>(t.updates) * o.points;

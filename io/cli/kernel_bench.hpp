@@ -5,7 +5,9 @@
 //
 // The trial state is never committed: every repetition integrates the same committed states
 // with the same increments, so the states stay valid however long the benchmark runs and
-// every repetition does the same work. One untimed warm-up repetition comes first.
+// every repetition does the same work. One untimed warm-up repetition comes first; a model
+// that carries its substep size between increments (hypoplasticity) then keeps the size the
+// warm-up ended with, as in a run of equal increments (--cold: it starts without one).
 
 #include <string>
 
@@ -25,6 +27,9 @@ struct KernelBenchOptions {
     bool scalar = false;
     double seconds = 1.0;
     double strain_increment = 1.0e-4;
+    std::string scheme = "rkf23"; // rkf23 | heun (kernels/explicit_integration.hpp)
+    double tolerance = 1.0e-3;    // relative local error of one substep
+    bool cold = false;            // no carried substep size in the timed repetitions
     // Interface formulations (interface_kernel_bench.hpp):
     std::string jacobian = "perturbation"; // perturbation | full-perturbation | analytical
     std::string subincrement = "fixed";    // fixed | adaptive

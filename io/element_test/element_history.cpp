@@ -26,22 +26,22 @@ std::vector<std::string> element_history_columns(const MaterialChoice& material)
     for (std::string_view prefix : history_prefixes(material)) { // engine/model_registry.hpp
         add_six(cols, std::string(prefix).c_str());
     }
-    if (static_cast<int>(cols.size()) != 2 + 6 + state_size(material)) {
-        throw std::logic_error(fmt::format("history columns of model {} do not match its state "
-                                           "size {}",
-                                           model_name(material), state_size(material)));
+    if (static_cast<int>(cols.size()) != 2 + 6 + reported_state_size(material)) {
+        throw std::logic_error(fmt::format("history columns of model {} do not match its "
+                                           "reported state size {}",
+                                           model_name(material), reported_state_size(material)));
     }
     return cols;
 }
 
-void write_element_row(HistoryWriter& out, const ElementRow& row) {
+void write_element_row(HistoryWriter& out, const ElementRow& row, int reported_state) {
     out.integer(row.step);
     out.integer(row.stage);
     for (double v : row.strain) {
         out.real(v);
     }
-    for (double v : row.state) {
-        out.real(v);
+    for (int k = 0; k < reported_state; ++k) {
+        out.real(row.state[static_cast<std::size_t>(k)]);
     }
     out.end_row();
 }

@@ -14,7 +14,8 @@ namespace ifsim::io {
 
 std::vector<std::string> element_history_columns(const MaterialChoice& material);
 
-// One row: the engine's row in the column order above.
-void write_element_row(HistoryWriter& out, const ElementRow& row);
+// One row: the engine's row in the column order above, with the first reported_state entries
+// of the state (reported_state_size(), engine/model_registry.hpp).
+void write_element_row(HistoryWriter& out, const ElementRow& row, int reported_state);
 
 } // namespace ifsim::io

@@ -62,6 +62,7 @@ void hypoplasticity_state(const TableReader& initial, const HypoplasticityParams
         }
     }
     append(y, h);
+    y.push_back(0.0); // no carried substep yet: the first update starts with the whole increment
 }
 
 void sanisand_state(const TableReader& initial, const SanisandParams& p, const Six& stress,

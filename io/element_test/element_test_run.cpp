@@ -20,9 +20,10 @@ ElementRunOutcome run_element_test_scene(const ElementTestScene& scene,
     HistoryWriter history = open_history(dir, element_history_columns(scene.material.choice),
                                          resume ? &resume->run : nullptr);
     ProgressLine line(progress, scene.total_steps(), static_cast<int>(scene.stages.size()));
+    const int reported = reported_state_size(scene.material.choice);
     const auto on_row = [&](const ElementRow& row) {
         const auto t0 = Clock::now();
-        write_element_row(history, row);
+        write_element_row(history, row, reported);
         line.update(row.step, row.stage);
         out.row_seconds += since(t0);
     };

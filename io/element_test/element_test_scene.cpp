@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "io/element_test/element_initial_state.hpp"
+#include "io/scene/integration_scheme_reader.hpp"
 #include "io/scene/table_reader.hpp"
 
 namespace ifsim::io {
@@ -38,8 +39,9 @@ ElementTestSettings read_settings(const TableReader& root) {
     }
     const TableReader t = root.table("integration");
     t.allow_only({"tolerance", "tangent", "newton_tolerance", "max_newton_iterations",
-                  "perturbation", "min_pressure", "max_substeps"});
+                  "perturbation", "min_pressure", "max_substeps", "scheme"});
     IntegrationSettings& is = s.update.settings;
+    is.scheme = read_integration_scheme(t, "scheme", is.scheme);
     is.tolerance = t.number_or("tolerance", is.tolerance, Bounds::open(0.0, 1.0));
     is.min_pressure = t.number_or("min_pressure", is.min_pressure, Bounds::positive());
     is.max_substeps =

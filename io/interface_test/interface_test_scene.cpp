@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "io/element_test/element_initial_state.hpp"
+#include "io/scene/integration_scheme_reader.hpp"
 #include "io/scene/interface_formulation_reader.hpp"
 #include "io/scene/table_reader.hpp"
 
@@ -140,10 +141,11 @@ void read_integration(const TableReader& root, InterfaceTestScene& scene) {
     t.allow_only({"tolerance", "min_pressure", "max_substeps", "newton_tolerance",
                   "max_newton_iterations", "interface_newton_jacobian",
                   "interface_max_newton_iterations", "polish_iterations", "adaptive_tolerance",
-                  "band_collapse", "min_band_fraction"});
+                  "band_collapse", "min_band_fraction", "scheme"});
     InterfaceTestSpec& spec = scene.spec;
     // The continuum models' own integration, for the sample and the interface model alike.
     IntegrationSettings& m = spec.sample_update.settings;
+    m.scheme = read_integration_scheme(t, "scheme", m.scheme);
     m.tolerance = t.number_or("tolerance", m.tolerance, Bounds::open(0.0, 1.0));
     m.min_pressure = t.number_or("min_pressure", m.min_pressure, Bounds::positive());
     m.max_substeps = static_cast<int>(t.integer_or("max_substeps", m.max_substeps, 1, 100'000'000));

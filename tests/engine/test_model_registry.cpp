@@ -24,8 +24,11 @@ TEST(ModelRegistry, EveryEntryMatchesItsKernel) {
             EXPECT_TRUE(E::set(set).has_value()) << M::name << " set " << set;
         }
         EXPECT_FALSE(E::set("no-such-set").has_value()) << M::name;
-        // Stress (6), void ratio, then six history columns per prefix.
-        EXPECT_EQ(7 + 6 * static_cast<int>(E::history_prefixes.size()), M::n_state) << M::name;
+        // Stress (6), void ratio, six history columns per prefix, then the carried substep.
+        EXPECT_EQ(7 + 6 * static_cast<int>(E::history_prefixes.size()) +
+                      (CarriesSubstep<M> ? 1 : 0),
+                  M::n_state)
+            << M::name;
         static_assert(std::is_same_v<typename model_of<typename M::Params>::type, M>);
         const MaterialChoice choice = typename M::Params{};
         EXPECT_EQ(model_name(choice), M::name);

@@ -89,17 +89,15 @@ TEST(Snapshot, ResumeInsideACutStep) {
     ShearBoxOptions o;
     o.steps = 1;
     o.displacement = 1.0e-3;
-    o.max_iterations = 5; // a budget that the whole millimetre in one increment exceeds
+    o.max_iterations = 6; // a budget that the whole millimetre in one increment exceeds
     ShearBox probe = build_shear_box(o);
     ASSERT_TRUE(probe.solver->run_stage(probe.consolidation).ok);
     int cut = 0, increments = 0;
-    ASSERT_TRUE(probe.solver
-                    ->run_stage(probe.shear,
-                                [&](const IncrementInfo& info) {
-                                    ++increments;
-                                    cut += info.cut_depth > 0 && info.next.depth > 0 ? 1 : 0;
-                                })
-                    .ok);
+    const StageResult r = probe.solver->run_stage(probe.shear, [&](const IncrementInfo& info) {
+        ++increments;
+        cut += info.cut_depth > 0 && info.next.depth > 0 ? 1 : 0;
+    });
+    ASSERT_TRUE(r.ok) << r.reason;
     ASSERT_GT(cut, 0) << "the case needs cut increments";
     for (int k = 1; k < increments; k += std::max(1, increments / 4)) {
         SCOPED_TRACE(k);

@@ -1,7 +1,8 @@
-// Tests of the explicit integration (adaptive Heun with per-lane masks) on the hypoplastic
-// kernel: order of convergence with fixed substeps, global error against the tolerance, the
-// path under halved increments, per-lane independence in a SIMD batch, and the engine's
-// scalar path vs SIMD path and 1 thread vs 2 threads.
+// Tests of the explicit integration with the modified Euler (Heun) scheme, h integrated with the
+// stress (per-lane masks) on the hypoplastic kernel (the RKF23 default with h on its own:
+// test_rkf23_integration.cpp): order of convergence with fixed substeps, global error against the
+// tolerance, the path under halved increments, per-lane independence in a SIMD batch, and the
+// engine's scalar path vs SIMD path and 1 thread vs 2 threads.
 
 #include <cmath>
 #include <cstdio>
@@ -28,6 +29,15 @@ std::string sci(double x) {
 }
 
 using test::HypoState;
+
+// The scheme these tests are about: Heun, h integrated with the stress, no carried substep.
+IntegrationSettings heun_settings() {
+    IntegrationSettings s;
+    s.scheme = IntegrationScheme::heun;
+    s.split_internal = false;
+    s.carry_substep = false;
+    return s;
+}
 
 HypoplasticityParams prepared(HypoplasticityParams p, bool igs) {
     p.intergranular_strain = igs;
@@ -89,7 +99,7 @@ HypoState run(const HypoplasticityParams& p, IntegrationSettings s, const Proble
 // are measured above the limit: n >= 128 is 1.6 R per substep.
 
 TEST(HeunIntegration, FixedSubstepsConvergeAtSecondOrder) {
-    const IntegrationSettings s;
+    const IntegrationSettings s = heun_settings();
     for (const bool igs : {false, true}) {
         const HypoplasticityParams p = prepared(parameter_sets::hypoplasticity_karlsruhe(), igs);
         const Problem pr = problem(p, 1e-2, 1.0);
@@ -117,7 +127,7 @@ TEST(HeunIntegration, FixedSubstepsConvergeAtSecondOrder) {
 // The SIMD path with a different fixed substep count per lane gives each lane the scalar
 // result (lanes finish at different times; finished lanes must stay untouched).
 TEST(HeunIntegration, PerLaneFixedSubstepsMatchScalar) {
-    const IntegrationSettings s;
+    const IntegrationSettings s = heun_settings();
     const HypoplasticityParams p = prepared(parameter_sets::hypoplasticity_l4c(), true);
     const Problem pr = problem(p, 3e-3, 0.3);
     StateVec<simd::batch, Hypoplasticity::n_state> yb;
@@ -157,7 +167,7 @@ TEST(HeunIntegration, PerLaneFixedSubstepsMatchScalar) {
 // and the global error of Heun, O(dt^2), is ~ tol: slope 1 in log(error) over log(tolerance).
 
 TEST(HeunIntegration, AdaptiveErrorScalesWithTolerance) {
-    IntegrationSettings s;
+    IntegrationSettings s = heun_settings();
     const HypoplasticityParams p = prepared(parameter_sets::hypoplasticity_karlsruhe(), false);
     const Problem pr = problem(p, 1e-2, 0.0);
     const HypoState ref = run(p, s, pr, 65536.0);
@@ -185,7 +195,7 @@ TEST(HeunIntegration, AdaptiveErrorScalesWithTolerance) {
 // fixed substeps converge at first order only; the adaptive scheme still reaches an error
 // proportional to the tolerance. Reference: the adaptive scheme at a much tighter tolerance.
 TEST(HeunIntegration, AdaptiveConvergesWithNonSmoothIntergranularStrain) {
-    IntegrationSettings s;
+    IntegrationSettings s = heun_settings();
     const HypoplasticityParams p = prepared(parameter_sets::hypoplasticity_karlsruhe(), true);
     for (const double h_along : {0.0, -1.0}) { // from h = 0 and after a full reversal
         const Problem pr = problem(p, 1e-2, h_along);
@@ -214,7 +224,7 @@ TEST(HeunIntegration, AdaptiveConvergesWithNonSmoothIntergranularStrain) {
 // substeps anyway and is flagged unreliable, but its state stays accurate (it used to be cut
 // off to the isotropic pressure floor, which destroys a perfectly valid state).
 TEST(HeunIntegration, UnreachableToleranceKeepsAnAccurateState) {
-    IntegrationSettings s;
+    IntegrationSettings s = heun_settings();
     const HypoplasticityParams p = prepared(parameter_sets::hypoplasticity_karlsruhe(), true);
     const Problem pr = problem(p, 1e-2, 0.0);
     s.tolerance = 1e-7;
@@ -228,7 +238,7 @@ TEST(HeunIntegration, UnreachableToleranceKeepsAnAccurateState) {
 }
 
 TEST(HeunIntegration, ZeroIncrementLeavesTheStateUnchanged) {
-    const IntegrationSettings s;
+    const IntegrationSettings s = heun_settings();
     for (const bool igs : {false, true}) {
         const HypoplasticityParams p = prepared(parameter_sets::hypoplasticity_l4c(), igs);
         const Problem pr = problem(p, 0.0, 0.7);
@@ -273,7 +283,7 @@ HypoState cyclic_path(const HypoplasticityParams& p, const IntegrationSettings& 
 }
 
 TEST(HeunIntegration, HalvingTheIncrementChangesThePathWithinTolerance) {
-    IntegrationSettings s;
+    IntegrationSettings s = heun_settings();
     for (const double tol : {1e-3, 1e-4}) {
         s.tolerance = tol;
         const HypoplasticityParams p = prepared(parameter_sets::hypoplasticity_l4c(), false);

@@ -127,13 +127,13 @@ TEST(InterfaceScene, ContractExampleIsReadWithItsValues) {
     EXPECT_DOUBLE_EQ(is.tolerance, 0.002);
     EXPECT_EQ(s.spec.contact.jacobian, ContactJacobian::perturbation);
     EXPECT_DOUBLE_EQ(s.spec.contact.perturbation, 1.49e-8);
-    ASSERT_EQ(s.spec.interface_state.size(), 13u);
+    ASSERT_EQ(s.spec.interface_state.size(), static_cast<std::size_t>(Hypoplasticity::n_state));
     EXPECT_DOUBLE_EQ(s.spec.interface_state[6], 0.81);
     EXPECT_DOUBLE_EQ(s.spec.interface_state[7 + 3], 7.0710678e-5);
     EXPECT_EQ(s.sample_material.model, "hypoplasticity");
     EXPECT_DOUBLE_EQ(hypo(s.spec.sample_material).roughness, 1.0); // the sample is continuum
     EXPECT_DOUBLE_EQ(s.spec.height, 0.02);
-    ASSERT_EQ(s.spec.sample_state.size(), 13u);
+    ASSERT_EQ(s.spec.sample_state.size(), static_cast<std::size_t>(Hypoplasticity::n_state));
     EXPECT_DOUBLE_EQ(s.spec.sample_state[0], -100.0);
     EXPECT_DOUBLE_EQ(s.spec.sample_state[6], 0.81);
     EXPECT_DOUBLE_EQ(s.spec.sample_state[7 + 3], 7.0710678e-5);

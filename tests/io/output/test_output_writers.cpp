@@ -94,7 +94,7 @@ TEST(ElementHistoryRow, HasOneFieldPerColumn) {
     row.stage = 2;
     row.strain = {-0.001, 0.0005, 0.0005, 0.0, 0.0, 0.0};
     row.state.assign(25, 0.25);
-    write_element_row(w, row);
+    write_element_row(w, row, 25);
     w.finish();
     std::istringstream in(test::read_text(dir / "history.csv"));
     std::string header, line;

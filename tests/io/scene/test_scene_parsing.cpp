@@ -61,7 +61,7 @@ TEST(SceneParsing, ExampleOedometerHasItsStagesAndState) {
             EXPECT_FALSE(stress);
         }
     }
-    ASSERT_EQ(s.initial_state.size(), 13u);
+    ASSERT_EQ(s.initial_state.size(), static_cast<std::size_t>(Hypoplasticity::n_state));
     EXPECT_DOUBLE_EQ(s.initial_state[0], -50.0);
     EXPECT_DOUBLE_EQ(s.initial_state[1], -25.0);
     EXPECT_DOUBLE_EQ(s.initial_state[6], 0.70);
