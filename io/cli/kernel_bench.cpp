@@ -39,6 +39,7 @@ Timing time_updates(const typename M::Params& params, const KernelBenchOptions& 
     opt.simd = !o.scalar;
     opt.settings.scheme = o.scheme == "heun" ? IntegrationScheme::heun : IntegrationScheme::rkf23;
     opt.settings.tolerance = o.tolerance;
+    opt.settings.split_internal = !o.no_split;
 
     Timing t;
     t.last = batched_update(mp, params, opt); // warm-up, untimed
@@ -140,6 +141,7 @@ nlohmann::ordered_json run_kernel_bench(const KernelBenchOptions& o) {
     j["scheme"] = o.scheme;
     j["tolerance"] = o.tolerance;
     j["carried_substep"] = !o.cold;
+    j["split_internal"] = !o.no_split;
     j["updates"] = t.updates;
     j["wall_s"] = t.wall_s;
     j["evaluations"] = static_cast<long long>(t.updates) * o.points;

@@ -30,6 +30,7 @@ struct KernelBenchOptions {
     std::string scheme = "rkf23"; // rkf23 | heun (kernels/explicit_integration.hpp)
     double tolerance = 1.0e-3;    // relative local error of one substep
     bool cold = false;            // no carried substep size in the timed repetitions
+    bool no_split = false;        // h integrated with the stress (IntegrationSettings)
     // Interface formulations (interface_kernel_bench.hpp):
     std::string jacobian = "perturbation"; // perturbation | full-perturbation | analytical
     std::string subincrement = "fixed";    // fixed | adaptive
