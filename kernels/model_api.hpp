@@ -73,11 +73,11 @@ struct IntegrationSettings {
 };
 
 // The integration the interface models of the contact engine use (Algorithm 1 and its
-// Jacobian lanes): modified Euler with h in the same scheme and no carried substep. Their
-// Jacobian lanes replay the base's substep count as equal substeps; with the RKF23 default
-// the base takes one substep where Heun took several, and the equal-substep lanes then miss
-// the base's path (Eq. 37 columns 100 % off at 1.5-10 kPa in
-// tests/engine/test_contact_jacobian_low_stress.cpp). docs/accuracy.md, "Continuum integration".
+// Jacobian lanes): modified Euler with h in the same scheme and no carried substep. The Eq. 37
+// lanes difference adaptive model updates, so a flipped step decision moves a traction by the
+// kept result's error: Heun keeps ~0.1 tol, RKF23 ~tol (Eq. 37 columns 100 % off at 1.5-10 kPa
+// in tests/engine/test_contact_jacobian_low_stress.cpp at 1e-3; fine at 1e-5, but slower than
+// Heun there). docs/accuracy.md, "Continuum integration".
 inline IntegrationSettings contact_model_integration() {
     IntegrationSettings s;
     s.scheme = IntegrationScheme::heun;
