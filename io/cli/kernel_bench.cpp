@@ -109,6 +109,13 @@ nlohmann::ordered_json run_kernel_bench(const KernelBenchOptions& o) {
     if (!(o.strain_increment > 0.0 && o.strain_increment < 0.1)) {
         throw std::invalid_argument("--increment: expected a strain increment norm in (0, 0.1)");
     }
+    if (o.scheme != "rkf23" && o.scheme != "heun") {
+        throw std::invalid_argument(
+            fmt::format("--scheme: unknown scheme \"{}\"; expected rkf23 or heun", o.scheme));
+    }
+    if (!(o.tolerance > 0.0 && o.tolerance < 0.5)) {
+        throw std::invalid_argument("--tolerance: expected a relative tolerance in (0, 0.5)");
+    }
     if (!o.formulation.empty() && o.formulation != "none") {
         return run_interface_kernel_bench(o);
     }
