@@ -283,11 +283,14 @@ simd::mask_t<T> substep_attempt(const typename M::Params& p, const IntegrationSe
     stats.rate_evaluations += simd::select(active, T(detail::scheme_evaluations(s.scheme)), T(0.0));
 
     const Mask valid = step.valid;
-    IntegrationSettings error_settings = s;
+    T err;
     if (split) { // h is as accurate as its own sub-integration: the estimate is on the rest
+        IntegrationSettings error_settings = s;
         error_settings.state_error_weight = 0.0;
+        err = M::local_error(p, error_settings, step.low, step.kept);
+    } else {
+        err = M::local_error(p, s, step.low, step.kept);
     }
-    T err = M::local_error(p, error_settings, step.low, step.kept);
     err = simd::select(simd::isfinite(err), err, T(1.0e30));
     const Mask accurate = fixed || (err <= s.tolerance);
     // An admissible substep of the smallest size is taken even when it misses the tolerance
@@ -326,11 +329,14 @@ simd::mask_t<T> substep_attempt(const typename M::Params& p, const IntegrationSe
                           dtl * shrink);
     next = simd::max(next, T(s.min_substep));
     dt = simd::select(active && !fixed, next, dt);
-    const T ideal =
-        simd::select(truncated, simd::max(dt, dtl * simd::min(q, T(max_carried_growth))),
-                     dtl * simd::min(q, T(max_carried_growth)));
-    stats.ideal_substep = simd::select(accept && !forced && !fixed, ideal,
-                                       simd::select(stuck || forced, T(0.0), stats.ideal_substep));
+    if (CarriesSubstep<M> && s.carry_substep) { // the carried size's estimate
+        const T ideal =
+            simd::select(truncated, simd::max(dt, dtl * simd::min(q, T(max_carried_growth))),
+                         dtl * simd::min(q, T(max_carried_growth)));
+        stats.ideal_substep =
+            simd::select(accept && !forced && !fixed, ideal,
+                         simd::select(stuck || forced, T(0.0), stats.ideal_substep));
+    }
     return active && ((T(1.0) - t) > 1.0e-12);
 }
 
@@ -348,7 +354,9 @@ void integrate_explicit(const typename M::Params& p, const IntegrationSettings& 
     }
     // Runaway: the lane did not finish within max_substeps. Report it; the caller cuts.
     stats.status = simd::select(active, T(lane_status::failed), stats.status);
-    carry_substep<M, T>(y, deps, stats.ideal_substep, fixed);
+    if (s.carry_substep) {
+        carry_substep<M, T>(y, deps, stats.ideal_substep, fixed);
+    }
 }
 
 } // namespace ifsim
