@@ -344,7 +344,7 @@ private:
             y[k] = lanes_.col(state + k)[i];
         }
         const double eps_n = lanes_.col(state + NS + contact_state::eps_n)[i];
-        const double d_s = opt.interface.shear_band_thickness * (1.0 + eps_n);
+        const double d_s = band_thickness(opt.interface, eps_n);
         const double dgt[2] = {cp.input(contact_col::dg1)[i], cp.input(contact_col::dg2)[i]};
         const Sym<double> dir = {0.0, 0.0, 0.0, std::atan(dgt[0] / d_s), std::atan(dgt[1] / d_s),
                                  0.0};

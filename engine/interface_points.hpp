@@ -139,7 +139,7 @@ public:
         }
     }
 
-    void fill(InterfaceRow& row, double d_s0) const {
+    void fill(InterfaceRow& row, const InterfaceSettings& s) const {
         const double* y[NS];
         for (int k = 0; k < NS; ++k) {
             y[k] = points_.committed(k);
@@ -153,7 +153,7 @@ public:
         row.eps_p2 = points_.committed(NS + contact_state::eps_p2)[0];
         row.gamma1 = points_.committed(NS + contact_state::gamma1)[0];
         row.gamma2 = points_.committed(NS + contact_state::gamma2)[0];
-        row.band_thickness = d_s0 * (1.0 + row.eps_n);
+        row.band_thickness = band_thickness(s, row.eps_n); // the thickness sheared at
     }
 
 private:
@@ -227,7 +227,7 @@ public:
         tau_[0] = trial_[0] = state[0];
         tau_[1] = trial_[1] = state[1];
     }
-    void fill(InterfaceRow& row, double) const {
+    void fill(InterfaceRow& row, const InterfaceSettings&) const {
         row.s_n = row.t_n;
         row.band_thickness = 0.0;
     }

@@ -40,7 +40,6 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
     const double t_N0 = ys[0]; // of the initial state, also when resumed
     const double K =
         spec.control == NormalControl::constant_stiffness ? spec.normal_stiffness : 0.0;
-    const double d_s0 = spec.contact.interface.shear_band_thickness;
 
     double u_t[2] = {0.0, 0.0};
     double slip[2] = {0.0, 0.0};
@@ -84,7 +83,7 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
         row.slip1 = slip[0];
         row.slip2 = slip[1];
         row.newton_iterations = iterations;
-        iface.fill(row, d_s0);
+        iface.fill(row, spec.contact.interface);
         on_row(row);
     };
     if (!resume) {

@@ -67,6 +67,15 @@ struct InterfaceSettings {
     double jacobian_tolerance = 0.0;
 };
 
+// The band thickness Algorithm 1 shears at for an interface normal strain: Eq. 26,
+// d_s0 (1 + eps_N), held at min_band_fraction d_s0 when clamp_band (interface_begin). Without
+// clamping a band below the floor fails its point, so the value is then never used.
+inline double band_thickness(const InterfaceSettings& s, double eps_n) {
+    const double d_s = s.shear_band_thickness * (1.0 + eps_n);
+    const double floor = s.min_band_fraction * s.shear_band_thickness;
+    return s.clamp_band && !(d_s > floor) ? floor : d_s;
+}
+
 // Codes of InterfaceStats::cause.
 namespace interface_failure {
 inline constexpr double none = 0.0;

@@ -16,6 +16,7 @@
 #include "io/output/column_units.hpp"
 #include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
+#include "io/output/stop_signal.hpp"
 
 namespace ifsim::io {
 
@@ -160,7 +161,9 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
                 if (fields && fields->due(increment, row.time, stage_end)) {
                     fields->write(*solver, increment, row.time); // timed by FieldOutput
                 }
-                if (checkpoints.enabled() && checkpoint_due.due(increment)) {
+                // A stop signal makes a checkpoint due at once (the run ends below).
+                const bool stop = stop_signal() != 0;
+                if (checkpoints.enabled() && (checkpoint_due.due(increment) || stop)) {
                     const auto t2 = Clock::now();
                     BoundaryValueCheckpoint c;
                     c.run = {"boundary-value",
@@ -184,9 +187,21 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
                     checkpoint_due.written();
                     out.checkpoint_seconds += since(t2);
                 }
+                throw_if_stopped(fmt::format("increment {} (stage {}, time {:.6g})", increment,
+                                             info.stage, row.time),
+                                 checkpoints.enabled());
             };
             // A long increment (many Newton iterations, cuts) still moves the line.
             const auto on_iteration = [&](const fem::IncrementInfo& info) {
+                // Stopped inside an increment: without checkpoints the run ends at once; with them
+                // the increment goes on to its checkpoint (StopWatchdog bounds the wait).
+                if (!checkpoints.enabled()) {
+                    throw_if_stopped(fmt::format("increment {} (during increment {}, Newton "
+                                                 "iteration {})",
+                                                 increment, increment + 1,
+                                                 info.residuals.size() - 1),
+                                     false);
+                }
                 warn_initial_imbalance(*solver, line, warned);
                 line.update(
                     static_cast<double>(steps_before) + info.t_begin * stage.steps, info.stage,
@@ -208,6 +223,9 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
                 fields->flush();
             }
         }
+    } catch (const RunInterrupted& e) {
+        out.ok = false;
+        out.reason = e.what();
     } catch (const std::exception& e) {
         // An invalid set-up or a writer error in the middle of the run: keep the rows so far.
         out.ok = false;

@@ -27,6 +27,7 @@
 #include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
 #include "io/output/run_folder.hpp"
+#include "io/output/stop_signal.hpp"
 #include "io/output/summary_writer.hpp"
 #include "io/scene/interface_formulation_reader.hpp"
 #include "io/scene/scene_error.hpp"
@@ -39,6 +40,9 @@ namespace ifsim::io {
 namespace {
 
 namespace fs = std::filesystem;
+
+// How long a step may take to end after a stop signal before the watchdog writes the summary.
+constexpr std::chrono::milliseconds stop_grace{10'000};
 
 // DIR/scene.toml: the scene as run (overrides applied, a mesh file by its absolute path), so
 // the folder says how to reproduce it.
@@ -371,6 +375,10 @@ int run_command(const RunOptions& opt) {
                        why.empty() ? "it is of another scene kind" : why);
             return exit_code::bad_input;
         }
+        // The stopped run's summary.json ("failed", interrupted) no longer describes the
+        // folder; the resumed run writes its own at its end.
+        std::error_code ignored;
+        fs::remove(dir / summary_file_name, ignored);
     }
     // Options of boundary-value runs given for another kind: a bad command line.
     const bool fields = opt.fields || opt.fields_every > 0;
@@ -396,6 +404,26 @@ int run_command(const RunOptions& opt) {
     std::string label;
     long steps = 0;
     CheckpointCount written;
+    // Stop signals end the run at the next step; a step that does not end within the grace
+    // still leaves a summary (the watchdog's, written from what was known before the run).
+    const StopSignals stop_signals;
+    const RunSummary before = summary;
+    StopWatchdog watchdog(stop_grace, [&before, &dir, t_start](int sig) {
+        RunSummary last = before;
+        last.ok = false;
+        last.reason = fmt::format("interrupted by {}: the step under way did not end within {} s "
+                                  "of the signal; history.csv holds the steps before it",
+                                  signal_name(sig), stop_grace.count() / 1000.0);
+        last.details["interrupted"] = signal_name(sig);
+        last.wall_s = since(t_start);
+        std::error_code ec;
+        fs::rename(dir / HistoryWriter::partial_name, dir / HistoryWriter::file_name, ec);
+        try {
+            write_summary(dir, last);
+            fmt::print(stderr, "\nifsim: run failed: {}\n", last.reason);
+        } catch (const std::exception&) {
+        }
+    });
     try {
         run_kind(scene, opt, dir, parse_s, checkpoints, checkpoint ? &*checkpoint : nullptr,
                  summary, written, label, steps);
@@ -413,6 +441,9 @@ int run_command(const RunOptions& opt) {
                                           {"times", checkpoint->run().resumes + 1}};
         }
     } catch (const std::exception& e) {
+        if (!watchdog.disarm()) {
+            return exit_code::io_error; // not reached: the watchdog ends the process
+        }
         fmt::print(stderr, "ifsim: error: {}\n", e.what());
         summary.ok = false;
         summary.reason = e.what();
@@ -420,7 +451,15 @@ int run_command(const RunOptions& opt) {
         write_summary_or_report(dir, summary, exit_code::io_error);
         return exit_code::io_error;
     }
+    if (!watchdog.disarm()) {
+        return exit_code::io_error; // not reached: the watchdog ends the process
+    }
     summary.wall_s = since(t_start);
+    if (const int sig = stop_signal(); sig != 0 && !summary.ok) {
+        summary.details["interrupted"] = signal_name(sig);
+        fmt::print(stderr, "ifsim: run failed: {}\n", summary.reason);
+        return write_summary_or_report(dir, summary, interrupted_exit_code(sig));
+    }
 
     // A degraded result is printed even with --quiet: a reader must not miss it.
     for (const RunWarning& w : summary.warnings) {

@@ -9,6 +9,7 @@
 #include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
 #include "io/output/step_checkpoints.hpp"
+#include "io/output/stop_signal.hpp"
 
 namespace ifsim::io {
 
@@ -26,14 +27,20 @@ ElementRunOutcome run_element_test_scene(const ElementTestScene& scene,
         write_element_row(history, row, reported);
         line.update(row.step, row.stage);
         out.row_seconds += since(t0);
+        if (!checkpoints.enabled()) { // else StepCheckpoints writes one first
+            throw_if_stopped(fmt::format("step {} of {}", row.step, scene.total_steps()), false);
+        }
     };
     StepCheckpoints<ElementTestCheckpoint, ElementTestPosition> saved(
         checkpoints, "element-test", scene.settings.update.simd, resume, history, dir,
-        &write_element_test_checkpoint);
+        &write_element_test_checkpoint, scene.total_steps());
     try {
         out.result = run_element_test(scene.material.choice, scene.initial_state, scene.stages,
                                       scene.settings, on_row, resume ? &resume->position : nullptr,
                                       saved.callback());
+    } catch (const RunInterrupted& e) {
+        out.result.ok = false;
+        out.result.reason = e.what();
     } catch (const std::exception& e) {
         // A writer or engine error in the middle of the run: keep the rows so far.
         out.result.ok = false;

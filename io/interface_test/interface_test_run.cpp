@@ -12,6 +12,7 @@
 #include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
 #include "io/output/step_checkpoints.hpp"
+#include "io/output/stop_signal.hpp"
 #include "io/scene/interface_formulation_reader.hpp"
 
 namespace ifsim::io {
@@ -33,13 +34,19 @@ InterfaceRunOutcome run_interface_test_scene(const InterfaceTestScene& scene,
         write_interface_row(history, row, contact_normal_stress(t_N0, K, row));
         line.update(row.step, row.stage);
         out.row_seconds += since(t0);
+        if (!checkpoints.enabled()) { // else StepCheckpoints writes one first
+            throw_if_stopped(fmt::format("step {} of {}", row.step, scene.total_steps()), false);
+        }
     };
     StepCheckpoints<InterfaceTestCheckpoint, InterfaceTestPosition> saved(
         checkpoints, "interface-test", scene.spec.contact.simd, resume, history, dir,
-        &write_interface_test_checkpoint);
+        &write_interface_test_checkpoint, scene.total_steps());
     try {
         out.result = run_interface_test(scene.spec, on_row, resume ? &resume->position : nullptr,
                                         saved.callback());
+    } catch (const RunInterrupted& e) {
+        out.result.ok = false;
+        out.result.reason = e.what();
     } catch (const std::exception& e) {
         // A writer or engine error in the middle of the run: keep the rows so far.
         out.result.ok = false;

@@ -2,10 +2,10 @@
 // history.csv of a run, one row per step. Rows go to DIR/history.csv.partial while the run
 // is going and the file is renamed to history.csv by finish() (also after a failed run, whose
 // rows are kept; summary.json says it failed), so a file named history.csv is never one that
-// is still being written. Numbers are written in the shortest form that reads back to the
+// is still being written. Each row goes to the file in one write(2): a killed run's file ends
+// in a whole row. Numbers are written in the shortest form that reads back to the
 // same double.
 
-#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -23,8 +23,8 @@ public:
     HistoryWriter(const HistoryWriter&) = delete;
     HistoryWriter& operator=(const HistoryWriter&) = delete;
 
-    // Continues the history.csv.partial of a killed run from a checkpoint: the file is cut
-    // back to `bytes` (what the checkpoint saw; rows written after it are dropped) holding
+    // Continues the history.csv.partial of a killed run from a checkpoint (or the history.csv
+    // of a run stopped by a signal, renamed back): the file is cut back to `bytes` (what the checkpoint saw; rows written after it are dropped) holding
     // `rows` rows. Throws std::runtime_error naming the file when it is missing or shorter.
     struct ResumeAt {
         long long bytes = 0;
@@ -54,10 +54,11 @@ public:
 
 private:
     void separator();
+    void write_line();
 
     std::filesystem::path dir_;
     std::vector<std::string> columns_;
-    std::FILE* file_ = nullptr;
+    int fd_ = -1;
     std::size_t in_row_ = 0;
     std::size_t rows_ = 0;
     fmt::memory_buffer line_;

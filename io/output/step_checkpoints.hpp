@@ -1,13 +1,17 @@
 #pragma once
 // The checkpoints of a point-level run (element test, interface test): after each step the
 // driver reports its position; when a checkpoint is due (every N steps or M minutes) the
-// history so far is synced and the position written with the run header.
+// history so far is synced and the position written with the run header. A stop signal makes
+// one due at once, and the run then ends (RunInterrupted) resumable from it.
 
 #include <filesystem>
 #include <functional>
 
+#include <fmt/format.h>
+
 #include "io/output/history_writer.hpp"
 #include "io/output/run_checkpoint.hpp"
+#include "io/output/stop_signal.hpp"
 
 namespace ifsim::io {
 
@@ -19,9 +23,9 @@ public:
 
     StepCheckpoints(const CheckpointRequest& request, const char* kind, bool simd,
                     const Checkpoint* resumed, HistoryWriter& history,
-                    const std::filesystem::path& dir, Write write)
+                    const std::filesystem::path& dir, Write write, long total_steps)
         : request_(request), kind_(kind), simd_(simd), resumed_(resumed), history_(history),
-          dir_(dir), write_(write), due_(request) {}
+          dir_(dir), write_(write), due_(request), total_(total_steps) {}
 
     // The driver's per-step callback (empty when no checkpoints are asked for: the driver then
     // builds no positions).
@@ -36,7 +40,8 @@ public:
 
 private:
     void after_step(const Position& p) {
-        if (!due_.due(p.step)) {
+        const bool stop = stop_signal() != 0;
+        if (!due_.due(p.step) && !stop) {
             return;
         }
         const auto t0 = Clock::now();
@@ -49,6 +54,9 @@ private:
         ++written_;
         due_.written();
         seconds_ += since(t0);
+        if (stop) {
+            throw_if_stopped(fmt::format("step {} of {}", p.step, total_), true);
+        }
     }
 
     const CheckpointRequest& request_;
@@ -61,6 +69,7 @@ private:
     CheckpointSchedule due_;
     long written_ = 0;
     double seconds_ = 0.0;
+    long total_;
 };
 
 } // namespace ifsim::io

@@ -265,6 +265,15 @@ TEST(InterfaceRun, ClampedBandMakesTheRunDegradedAndSaysSo) {
               j["counters"]["band_clamped_steps"].get<double>());
     EXPECT_GT(j["warnings"][0]["count"].get<double>(), 0.0);
     EXPECT_NE(r.err.find("WARNING: degraded result"), std::string::npos) << r.err;
+    // band_thickness is the thickness sheared at: the floor, not Eq. 26 below it (the
+    // history once wrote d_s0 (1 + eps_N), negative in long compaction).
+    const double d_s0 = j["shear_band_thickness"].get<double>();
+    bool below_floor_by_eq26 = false;
+    for (const auto& row : read_history(out).rows) {
+        EXPECT_GE(row.at("band_thickness"), 0.9999 * d_s0 * (1.0 - 1e-12));
+        below_floor_by_eq26 = below_floor_by_eq26 || (1.0 + row.at("eps_n") < 0.9999);
+    }
+    EXPECT_TRUE(below_floor_by_eq26);
 }
 
 TEST(InterfaceRun, ScalarAndSimdPathsAgreeToRoundOff) {

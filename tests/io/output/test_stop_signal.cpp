@@ -1,0 +1,82 @@
+// Stop signals: the handler records the first signal, a run loop's check throws with its name,
+// and the watchdog ends a step that does not return, after writing its last word.
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "io/output/stop_signal.hpp"
+
+namespace ifsim::io {
+namespace {
+
+TEST(StopSignal, HandlerRecordsTheSignalAndTheCheckThrowsWithItsName) {
+    const StopSignals installed;
+    EXPECT_EQ(stop_signal(), 0);
+    EXPECT_NO_THROW(throw_if_stopped("step 3 of 10", false));
+    std::raise(SIGTERM); // handled: the test process goes on
+    EXPECT_EQ(stop_signal(), SIGTERM);
+    try {
+        throw_if_stopped("step 3 of 10", true);
+        FAIL() << "no RunInterrupted";
+    } catch (const RunInterrupted& e) {
+        EXPECT_EQ(e.signal(), SIGTERM);
+        const std::string what = e.what();
+        EXPECT_NE(what.find("interrupted by SIGTERM after step 3 of 10"), std::string::npos);
+        EXPECT_NE(what.find("ifsim resume"), std::string::npos);
+    }
+    EXPECT_EQ(interrupted_exit_code(SIGTERM), 143);
+}
+
+TEST(StopSignal, NewInstallationForgetsAnEarlierRunsSignal) {
+    {
+        const StopSignals first;
+        std::raise(SIGINT);
+        EXPECT_EQ(stop_signal(), SIGINT);
+    }
+    const StopSignals second;
+    EXPECT_EQ(stop_signal(), 0);
+}
+
+// A step that never returns after SIGTERM: the watchdog writes its last word and exits 143.
+TEST(StopSignalDeathTest, WatchdogEndsAStuckStepAfterItsLastWord) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    const auto marker = std::filesystem::temp_directory_path() / "ifsim-watchdog-last-word";
+    std::filesystem::remove(marker);
+    EXPECT_EXIT(
+        {
+            const StopSignals installed;
+            StopWatchdog dog(std::chrono::milliseconds(100), [&](int sig) {
+                std::ofstream(marker) << signal_name(sig);
+            });
+            std::raise(SIGTERM);
+            for (;;) { // the stuck step
+                std::this_thread::sleep_for(std::chrono::milliseconds(10));
+            }
+        },
+        testing::ExitedWithCode(143), "");
+    std::ifstream in(marker);
+    std::string word;
+    in >> word;
+    EXPECT_EQ(word, "SIGTERM");
+}
+
+// A run that ends by itself disarms the watchdog: it never writes, also after a late signal.
+TEST(StopSignal, DisarmedWatchdogStaysSilent) {
+    const StopSignals installed;
+    bool spoke = false;
+    {
+        StopWatchdog dog(std::chrono::milliseconds(1), [&](int) { spoke = true; });
+        EXPECT_TRUE(dog.disarm());
+        std::raise(SIGTERM);
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+        EXPECT_FALSE(dog.disarm());
+    }
+    EXPECT_FALSE(spoke);
+}
+
+} // namespace
+} // namespace ifsim::io
