@@ -30,7 +30,10 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <string>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "engine/contact_lanes.hpp"
 #include "engine/contact_points.hpp"
@@ -70,6 +73,15 @@ struct ContactReport {
     double model_substeps = 0.0;
     bool ok() const { return failed == 0; }
 };
+
+// A failed interface point's cause in words, with its number where one goes with it:
+// "Newton on ... did not converge (Eqs. 18-20) (Algorithm 1 residual 0.989)".
+inline std::string describe_interface_failure(double cause, double residual) {
+    const std::string label = interface_failure::residual_label(cause);
+    return label.empty()
+               ? std::string(interface_failure::describe(cause))
+               : fmt::format("{} ({} {:.3g})", interface_failure::describe(cause), label, residual);
+}
 
 // Batched contact update with Jacobian columns.
 //

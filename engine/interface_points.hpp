@@ -139,6 +139,28 @@ public:
         }
     }
 
+    // Why the band may be unable to meet its normal targets, for a failure message ("" when
+    // nothing is known): with the novel formulation, targets outside the interface model's
+    // limit surface (for models that say where it is).
+    std::string diagnose(double t_N, double s_p1, double s_p2) const {
+        if constexpr (requires { Mi::matsuoka_nakai(params_, Sym<double>{}); }) {
+            if (opt_.interface.formulation == InterfaceFormulation::novel) {
+                const auto ls = Mi::matsuoka_nakai(params_, {t_N, s_p1, s_p2, 0.0, 0.0, 0.0});
+                if (ls.outside()) {
+                    return fmt::format(
+                        "; the band's normal targets (sigma_N, sigma_p1, sigma_p2) = ({:.4g}, "
+                        "{:.4g}, {:.4g}) kPa lie outside the interface model's limit surface "
+                        "at kappa phi_c = {:.3g} deg (Matsuoka-Nakai I1 I2 / I3 = {:.4g} > "
+                        "{:.4g}): the novel formulation (Eqs. 19-20) asks the band to carry "
+                        "the continuum's in-plane stresses, which a band this smooth cannot",
+                        t_N, s_p1, s_p2, params_.roughness * params_.phi_c * 180.0 / M_PI, ls.value,
+                        ls.limit);
+                }
+            }
+        }
+        return {};
+    }
+
     void fill(InterfaceRow& row, const InterfaceSettings& s) const {
         const double* y[NS];
         for (int k = 0; k < NS; ++k) {
@@ -227,6 +249,7 @@ public:
         tau_[0] = trial_[0] = state[0];
         tau_[1] = trial_[1] = state[1];
     }
+    std::string diagnose(double, double, double) const { return {}; }
     void fill(InterfaceRow& row, const InterfaceSettings&) const {
         row.s_n = row.t_n;
         row.band_thickness = 0.0;

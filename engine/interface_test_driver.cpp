@@ -115,8 +115,9 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
         // Novel: the in-plane interface stresses follow the adjacent continuum (Eqs. 19-20).
         e.iface = iface.evaluate(t_N, x[0], x[1], e.sample.y[1], e.sample.y[2]);
         if (!e.iface.ok) {
-            e.why = fmt::format("the interface point failed: {} (Algorithm 1 residual {:.3g})",
-                                interface_failure::describe(e.iface.cause), e.iface.residual);
+            e.why = fmt::format("the interface point failed: {}{}",
+                                describe_interface_failure(e.iface.cause, e.iface.residual),
+                                iface.diagnose(t_N, e.sample.y[1], e.sample.y[2]));
             return e;
         }
         e.R[0] = e.iface.tau[0] - e.sample.y[3];

@@ -70,9 +70,9 @@ public:
             const ContactKinematics& k = kin_->point(i);
             error = fmt::format(
                 "{} interface point(s) of contact pair '{}' failed in Algorithm 1, first point "
-                "{} at ({:.6g}, {:.6g}, {:.6g}): {} (residual {:.3e}); {}",
+                "{} at ({:.6g}, {:.6g}, {:.6g}): {}; {}",
                 rep.failed, spec_.name, i, k.x[0], k.x[1], k.x[2],
-                interface_failure::describe(rep.first_failed_cause), rep.first_failed_residual,
+                describe_interface_failure(rep.first_failed_cause, rep.first_failed_residual),
                 describe_point(i));
             return false;
         }
@@ -273,7 +273,7 @@ protected:
         r.eps_N = points_.committed(NS + contact_state::eps_n)[i];
         r.eps_p1 = points_.committed(NS + contact_state::eps_p1)[i];
         r.eps_p2 = points_.committed(NS + contact_state::eps_p2)[i];
-        r.band_thickness = spec_.options.interface.shear_band_thickness * (1.0 + r.eps_N);
+        r.band_thickness = band_thickness(spec_.options.interface, r.eps_N); // as sheared at
         r.void_ratio = points_.committed(state_index::void_ratio)[i];
         r.subincrements = points_.output(contact_col::subincrements)[i];
     }

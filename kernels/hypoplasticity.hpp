@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "kernels/explicit_integration.hpp"
 #include "kernels/model_api.hpp"
@@ -48,6 +49,25 @@ struct Hypoplasticity {
     static constexpr int substep_index = 13;
     // Integrated by integrate_explicit: the engine may refill finished SIMD lanes.
     static constexpr bool explicit_stepper = true;
+
+    // The Matsuoka-Nakai value I1 I2 / I3 of a compressive stress and its value on the model's
+    // limit surface, that of kappa*phi_c (von Wolffersdorff's critical states lie on it). A
+    // stress above the limit lies outside the surface: no hypoplastic path holds it, e.g. a
+    // band of kappa = 0.05 (1.7 degrees) asked to carry sigma_p = sigma_N / 2.
+    struct LimitSurface {
+        double value = 0.0, limit = 0.0;
+        bool outside() const { return value > limit; }
+    };
+    static LimitSurface matsuoka_nakai(const HypoplasticityParams& p, const Sym<double>& s) {
+        const double I1 = s[0] + s[1] + s[2];
+        const double I2 =
+            s[0] * s[1] + s[1] * s[2] + s[2] * s[0] - s[3] * s[3] - s[4] * s[4] - s[5] * s[5];
+        const double I3 = s[0] * (s[1] * s[2] - s[5] * s[5]) - s[3] * (s[3] * s[2] - s[5] * s[4]) +
+                          s[4] * (s[3] * s[5] - s[1] * s[4]);
+        const double sin2 = std::pow(std::sin(p.roughness * p.phi_c), 2);
+        return {I3 < 0.0 ? I1 * I2 / I3 : std::numeric_limits<double>::infinity(),
+                (9.0 - sin2) / (1.0 - sin2)};
+    }
     static constexpr bool pressure_floor = true;
     using Params = HypoplasticityParams;
     template <class T>

@@ -246,8 +246,22 @@ void interface_step(const typename M::Params& mp, const InterfaceSettings& s,
                               simd::select(accept, hl * grow, hl * shrink));
         // A sub-increment that cannot be made small enough ends the lane as failed.
         const Mask too_small = c.active && !accept && (hl * c.total < 1.0e-12);
-        fail(too_small && full.model_failed, interface_failure::model);
-        fail(too_small, interface_failure::newton);
+        // The cause and number of the first of the three solves that failed (the full one, or
+        // a half whose Newton failed where the full one converged), else the error control's.
+        const Mask ran = c.active && full.converged; // the halves ran where this holds
+        const Mask a_ok = a.converged || !(ran && !c.forced);
+        const Mask b_ok = b.converged || !(ran && a.converged);
+        const Mask fa = !full.converged, fh = !fa && !a_ok, fb = !fa && !fh && !b_ok;
+        const Mask model_failed =
+            (fa && full.model_failed) || (fh && a.model_failed) || (fb && b.model_failed);
+        const Mask singular = (fa && full.singular) || (fh && a.singular) || (fb && b.singular);
+        fail(too_small && model_failed, interface_failure::model);
+        fail(too_small && singular, interface_failure::singular_newton);
+        fail(too_small && !both, interface_failure::newton);
+        fail(too_small, interface_failure::error_control);
+        const T failed_residual = simd::select(
+            fa, full.residual, simd::select(fh, a.residual, simd::select(fb, b.residual, err)));
+        c.stats.residual = simd::select(too_small, failed_residual, c.stats.residual);
         c.active = c.active && !too_small;
     } else if (s.adaptive) {
         // Only forced lanes in this batch: the Jacobian lanes of an adaptive run. They take the
@@ -261,10 +275,12 @@ void interface_step(const typename M::Params& mp, const InterfaceSettings& s,
         const Mask retry = c.active && !full.converged && (hl * c.total >= 1.0e-12);
         c.h = simd::select(retry, 0.5 * hl, c.h);
         fail(c.active && !retry && full.model_failed, interface_failure::model);
+        fail(c.active && !retry && full.singular, interface_failure::singular_newton);
         fail(c.active && !retry && !full.converged, interface_failure::newton);
         c.active = c.active && (full.converged || retry);
     } else {
         fail(c.active && full.model_failed, interface_failure::model);
+        fail(c.active && full.singular, interface_failure::singular_newton);
         fail(c.active && !full.converged, interface_failure::newton);
         c.active = c.active && full.converged;
     }

@@ -23,6 +23,7 @@ struct SubincrementResult {
     std::array<T, 3> x{T(0.0), T(0.0), T(0.0)}; // converged normal strain increments
     simd::mask_t<T> converged{};
     simd::mask_t<T> model_failed{};
+    simd::mask_t<T> singular{}; // the Newton matrix (Eq. 22) could not be solved
     T residual = T(0.0);
 };
 
@@ -54,6 +55,7 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
     out.y = y0;
     out.converged = !active;
     out.model_failed = Mask(false);
+    out.singular = Mask(false);
     std::array<T, 3> x = x_guess;
     const SubstepControl<T> adaptive_ctl{};
     Mask failed(false); // lanes whose model update or Newton matrix failed
@@ -136,6 +138,9 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
         }
         const SmallSolve<T> sol = small_solve<T>(k, J, res);
         failed = failed || (iterate && !sol.solved);
+        // A failed lane reports where it stood (a residual of 0 would say nothing).
+        out.singular = out.singular || (iterate && !sol.solved);
+        out.residual = simd::select(iterate && !sol.solved, r, out.residual);
         const Mask step = iterate && sol.solved;
         for (int c = 0; c < k; ++c) {
             x[c] = simd::select(step, x[c] - sol.x[c], x[c]);

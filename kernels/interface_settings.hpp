@@ -84,6 +84,10 @@ inline constexpr double non_finite_input = 2.0;
 inline constexpr double newton = 3.0; // Eqs. 18-20 not met in max_newton_iterations
 inline constexpr double model = 4.0;  // the constitutive update failed
 inline constexpr double subincrement_limit = 5.0;
+inline constexpr double singular_newton = 6.0; // d sigma_normal / d eps_normal singular (Eq. 22)
+// adaptive: the step-doubling error stayed above its tolerance down to the smallest
+// sub-increment (the residual field then holds that error)
+inline constexpr double error_control = 7.0;
 
 inline const char* describe(double cause) {
     if (cause == band_collapse) {
@@ -101,7 +105,24 @@ inline const char* describe(double cause) {
     if (cause == subincrement_limit) {
         return "too many sub-increments";
     }
+    if (cause == error_control) {
+        return "the adaptive sub-increments could not meet their error tolerance down to the "
+               "smallest size (the response does not become smooth as the sub-increment shrinks: "
+               "often a band stress outside the interface model's limit surface)";
+    }
+    if (cause == singular_newton) {
+        return "the Newton matrix of the interface normal strains (Eq. 22) is singular: the "
+               "band's normal stiffness vanished, as on or outside the interface model's limit "
+               "surface";
+    }
     return "unknown";
+}
+// What the number that goes with a failure is ("" when none goes with it).
+inline const char* residual_label(double cause) {
+    if (cause == band_collapse || cause == non_finite_input) {
+        return "";
+    }
+    return cause == error_control ? "relative error of the smallest try" : "Algorithm 1 residual";
 }
 } // namespace interface_failure
 

@@ -187,9 +187,13 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
                     checkpoint_due.written();
                     out.checkpoint_seconds += since(t2);
                 }
-                throw_if_stopped(fmt::format("increment {} (stage {}, time {:.6g})", increment,
-                                             info.stage, row.time),
-                                 checkpoints.enabled());
+                // `stop` as seen before the checkpoint: a signal arriving since is taken at
+                // the next increment, after its checkpoint.
+                if (stop) {
+                    throw_if_stopped(fmt::format("increment {} (stage {}, time {:.6g})", increment,
+                                                 info.stage, row.time),
+                                     checkpoints.enabled());
+                }
             };
             // A long increment (many Newton iterations, cuts) still moves the line.
             const auto on_iteration = [&](const fem::IncrementInfo& info) {

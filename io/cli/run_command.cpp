@@ -22,6 +22,7 @@
 #include "io/interface_test/interface_checkpoint.hpp"
 #include "io/interface_test/interface_test_run.hpp"
 #include "io/interface_test/interface_test_scene.hpp"
+#include "io/output/admissibility_warnings.hpp"
 #include "io/output/atomic_file.hpp"
 #include "io/output/column_units.hpp"
 #include "io/output/history_writer.hpp"
@@ -151,6 +152,7 @@ void add_element_test_results(RunSummary& summary, const ElementTestScene& scene
                          "substep floor): the stress path there is not the model's own",
                          r.counters.unreliable_updates)});
     }
+    add_admissibility(summary, run.admissibility, "material", scene.material.model);
     summary.details["model"] = scene.material.model;
     summary.details["parameters"] = scene.material.parameters;
     summary.details["roughness"] = scene.material.roughness;

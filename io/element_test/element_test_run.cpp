@@ -25,6 +25,7 @@ ElementRunOutcome run_element_test_scene(const ElementTestScene& scene,
     const auto on_row = [&](const ElementRow& row) {
         const auto t0 = Clock::now();
         write_element_row(history, row, reported);
+        check_state(scene.material.choice, row.state.data(), row.step, out.admissibility);
         line.update(row.step, row.stage);
         out.row_seconds += since(t0);
         if (!checkpoints.enabled()) { // else StepCheckpoints writes one first

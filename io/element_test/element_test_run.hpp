@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "engine/element_test_driver.hpp"
+#include "engine/state_admissibility.hpp"
 #include "io/element_test/element_checkpoint.hpp"
 #include "io/element_test/element_test_scene.hpp"
 #include "io/output/progress.hpp"
@@ -20,6 +21,7 @@ struct ElementRunOutcome {
     double finish_seconds = 0.0; // closing and renaming history.csv
     long checkpoints = 0;        // checkpoints written by this run
     double checkpoint_seconds = 0.0;
+    StateAdmissibility admissibility; // rows whose states left the model's sand region
 };
 
 // Writes DIR/history.csv (kept with the rows so far when the run fails), and DIR/checkpoint

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "io/interface_test/interface_history.hpp"
+#include "io/output/admissibility_warnings.hpp"
 #include "io/output/column_units.hpp"
 #include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
@@ -16,6 +17,22 @@
 #include "io/scene/interface_formulation_reader.hpp"
 
 namespace ifsim::io {
+
+namespace {
+
+// The sample's and the band's states of a row, checked against their models' sand region
+// (engine/state_admissibility.hpp). The band carries the plate's shear traction (in series).
+void check_row(const InterfaceTestScene& scene, const InterfaceRow& r, InterfaceRunOutcome& out) {
+    const double sample[7] = {r.sample_s11, r.sample_s22, r.sample_s33, r.sample_s12,
+                              r.sample_s13, 0.0,          r.e_sample};
+    check_state(scene.sample_material.choice, sample, r.step, out.sample_admissibility);
+    if (!scene.coulomb()) {
+        const double band[7] = {r.s_n, r.s_p1, r.s_p2, r.t_t1, r.t_t2, 0.0, r.e_interface};
+        check_state(scene.interface_material.choice, band, r.step, out.admissibility);
+    }
+}
+
+} // namespace
 
 InterfaceRunOutcome run_interface_test_scene(const InterfaceTestScene& scene,
                                              const std::filesystem::path& dir,
@@ -32,6 +49,7 @@ InterfaceRunOutcome run_interface_test_scene(const InterfaceTestScene& scene,
     const auto on_row = [&](const InterfaceRow& row) {
         const auto t0 = Clock::now();
         write_interface_row(history, row, contact_normal_stress(t_N0, K, row));
+        check_row(scene, row, out);
         line.update(row.step, row.stage);
         out.row_seconds += since(t0);
         if (!checkpoints.enabled()) { // else StepCheckpoints writes one first
@@ -90,6 +108,10 @@ void add_interface_test_results(RunSummary& summary, const InterfaceTestScene& s
                          c.band_clamped_steps, run.rows > 0 ? run.rows - 1 : 0,
                          scene.spec.contact.interface.min_band_fraction *
                              scene.spec.contact.interface.shear_band_thickness)});
+    }
+    add_admissibility(summary, run.sample_admissibility, "sample", scene.sample_material.model);
+    if (!scene.coulomb()) {
+        add_admissibility(summary, run.admissibility, "interface", scene.interface_material.model);
     }
     auto& d = summary.details;
     d["columns"] = describe_columns("interface-test", interface_history_columns());

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "engine/interface_test_driver.hpp"
+#include "engine/state_admissibility.hpp"
 #include "io/interface_test/interface_checkpoint.hpp"
 #include "io/interface_test/interface_test_scene.hpp"
 #include "io/output/progress.hpp"
@@ -21,6 +22,8 @@ struct InterfaceRunOutcome {
     double finish_seconds = 0.0; // closing and renaming history.csv
     long checkpoints = 0;        // checkpoints written by this run
     double checkpoint_seconds = 0.0;
+    StateAdmissibility admissibility;        // the interface band's states (continuum models)
+    StateAdmissibility sample_admissibility; // the sample's
 };
 
 // Writes DIR/history.csv (kept with the rows so far when the run fails), and DIR/checkpoint

@@ -24,8 +24,9 @@ public:
     HistoryWriter& operator=(const HistoryWriter&) = delete;
 
     // Continues the history.csv.partial of a killed run from a checkpoint (or the history.csv
-    // of a run stopped by a signal, renamed back): the file is cut back to `bytes` (what the checkpoint saw; rows written after it are dropped) holding
-    // `rows` rows. Throws std::runtime_error naming the file when it is missing or shorter.
+    // of a run stopped by a signal, renamed back): the file is cut back to `bytes` (what the
+    // checkpoint saw; rows written after it are dropped) holding `rows` rows. Throws
+    // std::runtime_error naming the file when it is missing or shorter.
     struct ResumeAt {
         long long bytes = 0;
         std::size_t rows = 0;
