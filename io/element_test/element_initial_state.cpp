@@ -65,9 +65,24 @@ void hypoplasticity_state(const TableReader& initial, const HypoplasticityParams
     y.push_back(0.0); // no carried substep yet: the first update starts with the whole increment
 }
 
+// Largest |psi| = |e - e_c(p)| a Sanisand state may start with. The model has no void-ratio
+// bounds of its own; Dafalias & Manzari (2004) calibrated Toyoura sand on states of psi from
+// about -0.2 to +0.1, so +-0.5 already extrapolates far, and beyond it (e = 0.01 was accepted
+// and ran on to 0.008) the numbers no longer describe any sand.
+constexpr double sanisand_max_state_parameter = 0.5;
+
 void sanisand_state(const TableReader& initial, const SanisandParams& p, const Six& stress,
-                    std::vector<double>& y) {
-    compressive_pressure(initial, stress);
+                    double e, std::vector<double>& y) {
+    const double pressure = compressive_pressure(initial, stress);
+    const double e_c = p.e0 - p.lambda_c * std::pow(pressure / p.p_a, p.xi);
+    if (!(std::abs(e - e_c) <= sanisand_max_state_parameter)) {
+        initial.fail("void_ratio",
+                     fmt::format("expected a void ratio within {} of the critical state line, "
+                                 "e_c = {:.4f} at p = {:.4g} kPa (state parameter |psi| <= {}), "
+                                 "got {} (psi = {:.3g})",
+                                 sanisand_max_state_parameter, e_c, pressure,
+                                 sanisand_max_state_parameter, e, e - e_c));
+    }
     // Stress ratio r = dev(sigma)/(tr(sigma)/3): the same in both sign conventions.
     const double mean = trace(stress) / 3.0;
     Six r{};
@@ -136,7 +151,7 @@ std::vector<double> model_state(const TableReader& t, const MaterialSpec& materi
     if (const auto* p = std::get_if<HypoplasticityParams>(&material.choice)) {
         hypoplasticity_state(t, *p, stress, e, y);
     } else if (const auto* p = std::get_if<SanisandParams>(&material.choice)) {
-        sanisand_state(t, *p, stress, y);
+        sanisand_state(t, *p, stress, e, y);
     }
     return y;
 }
