@@ -135,7 +135,8 @@ nlohmann::ordered_json element_counters(const ElementTestCounters& c) {
             {"constitutive_evaluations", c.constitutive_evaluations},
             {"rejected_substeps", static_cast<long long>(std::llround(c.rejected_substeps))},
             {"rate_evaluations", static_cast<long long>(std::llround(c.rate_evaluations))},
-            {"unreliable_updates", c.unreliable_updates}};
+            {"unreliable_updates", c.unreliable_updates},
+            {"frozen_substep_retries", c.frozen_substep_retries}};
 }
 
 // What an element-test run adds to its summary: status, counters, phases and the material.
