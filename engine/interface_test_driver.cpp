@@ -103,8 +103,16 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
         typename PointEvaluator<Ms>::Eval sample;
         InterfaceResponse iface;
     };
+    // Interface model substeps when the current step began, and whether it went past its bound.
+    double step_start_substeps = 0.0;
+    bool over_budget = false;
+    std::string budget_why; // the message of the evaluation that went past the bound
     auto evaluate = [&](const double x[3], const double du[2]) {
         Eval e;
+        if (over_budget) {
+            e.why = budget_why;
+            return e;
+        }
         const double t_N = t_N0 - K * H * (eps11 + x[2]);
         e.de = {x[2], 0.0, 0.0, (du[0] - x[0]) / (2.0 * H), (du[1] - x[1]) / (2.0 * H), 0.0};
         e.sample = sample.evaluate(ys, e.de);
@@ -114,6 +122,18 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
         }
         // Novel: the in-plane interface stresses follow the adjacent continuum (Eqs. 19-20).
         e.iface = iface.evaluate(t_N, x[0], x[1], e.sample.y[1], e.sample.y[2]);
+        const double spent = result.counters.model_substeps - step_start_substeps;
+        if (spent > spec.max_step_substeps) {
+            over_budget = true;
+            budget_why =
+                fmt::format("the interface model needed {:.3g} substeps in this step, more "
+                            "than the bound of {:.3g} per step ([integration] "
+                            "max_step_substeps); smaller steps, or a coarser [integration] "
+                            "tolerance, cost less",
+                            spent, spec.max_step_substeps);
+            e.why = budget_why;
+            return e;
+        }
         if (!e.iface.ok) {
             e.why = fmt::format("the interface point failed: {}{}",
                                 describe_interface_failure(e.iface.cause, e.iface.residual),
@@ -216,6 +236,7 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
         const int first_k = resume && s == first_stage ? resume->step_in_stage + 1 : 1;
         for (int k = first_k; k <= st.steps; ++k) {
             ++step;
+            step_start_substeps = result.counters.model_substeps;
             // Take the step whole if possible; on failure halve the rest, committing every
             // sub-step that converged (each is a valid increment of the test).
             double done = 0.0;
@@ -230,7 +251,7 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
                 const Solve sol = solve(du, guess);
                 if (!sol.ok) {
                     why = sol.why;
-                    if (++cuts > max_cuts) {
+                    if (over_budget || ++cuts > max_cuts) {
                         break;
                     }
                     fraction = 0.5 * f;
@@ -250,9 +271,12 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
             }
             if (done < 1.0 - 1.0e-12) {
                 result.ok = false;
-                result.reason = fmt::format("step {} (stage {}, step {} of {}): {} (also after "
-                                            "cutting the step into up to {} parts)",
-                                            step, s + 1, k, st.steps, why, 1 << max_cuts);
+                result.reason =
+                    over_budget ? fmt::format("step {} (stage {}, step {} of {}): {}", step, s + 1,
+                                              k, st.steps, why)
+                                : fmt::format("step {} (stage {}, step {} of {}): {} (also after "
+                                              "cutting the step into up to {} parts)",
+                                              step, s + 1, k, st.steps, why, 1 << max_cuts);
                 break;
             }
             ++result.counters.increments;

@@ -322,6 +322,10 @@ void interface_step(const typename M::Params& mp, const InterfaceSettings& s,
     const Mask limit = c.active && (c.count > static_cast<double>(s.max_subincrements));
     fail(limit, interface_failure::subincrement_limit);
     c.active = c.active && !limit;
+    const Mask costly = c.active && (c.stats.model_substeps > s.max_model_substeps);
+    fail(costly, interface_failure::work_limit);
+    c.stats.residual = simd::select(costly, c.stats.model_substeps, c.stats.residual);
+    c.active = c.active && !costly;
 }
 
 // The result of one evaluation: the new state into st (failed and separated lanes: unchanged, st

@@ -40,6 +40,10 @@ struct InterfaceSettings {
     // docs/interface.md for the measurements behind this default.
     int polish_iterations = 1;
     long max_subincrements = 2'000'000; // per call, a guard against runaway refinement
+    // Per call and lane: the model's own substeps in Algorithm 1's Newton evaluations. A bound
+    // on one evaluation's work (a Sanisand band at kappa = 0.05 spent 6.8e6 in one call, 90 s);
+    // the drivers bound a whole step on top (max_step_substeps).
+    double max_model_substeps = 1.0e6;
     NewtonJacobian newton_jacobian = NewtonJacobian::rate;
     double newton_perturbation = 1.0e-7; // relative strain perturbation of the Newton Jacobian
     // Eq. 26 lets d_s = d_s0 (1 + eps_N) shrink towards zero in long compaction. Below this
@@ -88,6 +92,7 @@ inline constexpr double singular_newton = 6.0; // d sigma_normal / d eps_normal 
 // adaptive: the step-doubling error stayed above its tolerance down to the smallest
 // sub-increment (the residual field then holds that error)
 inline constexpr double error_control = 7.0;
+inline constexpr double work_limit = 8.0; // max_model_substeps reached (residual: substeps spent)
 
 inline const char* describe(double cause) {
     if (cause == band_collapse) {
@@ -105,6 +110,10 @@ inline const char* describe(double cause) {
     if (cause == subincrement_limit) {
         return "too many sub-increments";
     }
+    if (cause == work_limit) {
+        return "the interface model's own substeps in one evaluation reached their bound "
+               "(InterfaceSettings::max_model_substeps)";
+    }
     if (cause == error_control) {
         return "the adaptive sub-increments could not meet their error tolerance down to the "
                "smallest size (the response does not become smooth as the sub-increment shrinks: "
@@ -121,6 +130,9 @@ inline const char* describe(double cause) {
 inline const char* residual_label(double cause) {
     if (cause == band_collapse || cause == non_finite_input) {
         return "";
+    }
+    if (cause == work_limit) {
+        return "model substeps";
     }
     return cause == error_control ? "relative error of the smallest try" : "Algorithm 1 residual";
 }

@@ -141,7 +141,7 @@ void read_integration(const TableReader& root, InterfaceTestScene& scene) {
     t.allow_only({"tolerance", "min_pressure", "max_substeps", "newton_tolerance",
                   "max_newton_iterations", "interface_newton_jacobian",
                   "interface_max_newton_iterations", "polish_iterations", "adaptive_tolerance",
-                  "band_collapse", "min_band_fraction", "scheme"});
+                  "band_collapse", "min_band_fraction", "scheme", "max_step_substeps"});
     InterfaceTestSpec& spec = scene.spec;
     // The continuum models' own integration, for the sample and the interface model alike.
     IntegrationSettings& m = spec.sample_update.settings;
@@ -154,6 +154,8 @@ void read_integration(const TableReader& root, InterfaceTestScene& scene) {
         t.number_or("newton_tolerance", spec.newton_tolerance, Bounds::open(0.0, 1.0));
     spec.max_newton_iterations = static_cast<int>(
         t.integer_or("max_newton_iterations", spec.max_newton_iterations, 1, 10'000));
+    spec.max_step_substeps =
+        t.number_or("max_step_substeps", spec.max_step_substeps, Bounds::positive());
     if (scene.coulomb()) {
         reject_keys(t, algorithm1_keys,
                     "tunes Algorithm 1 of the continuum formulations; expected no such key for "

@@ -13,30 +13,35 @@ nlohmann::ordered_json count_json(const AdmissibilityCount& c) {
             {"worst_step", c.worst_step}};
 }
 
+// One warning per kind of excess: "<rows> row(s) of the <who> (<model>) <what>, first at step
+// <n>, <worst> at step <m><why>".
+void warn(RunSummary& summary, const AdmissibilityCount& c, const std::string& code,
+          const std::string& subject, const std::string& what, const std::string& worst,
+          const std::string& why) {
+    if (c.rows == 0) {
+        return;
+    }
+    summary.warnings.push_back(
+        {code, static_cast<double>(c.rows),
+         fmt::format("{} row(s) of the {} {}, first at step {}, {} at step {}{}", c.rows, subject,
+                     what, c.first_step, worst, c.worst_step, why)});
+}
+
 } // namespace
 
 void add_admissibility(RunSummary& summary, const StateAdmissibility& a, const std::string& who,
                        const std::string& model) {
     summary.details["admissibility"][who] = {{"tension", count_json(a.tension)},
                                              {"void_ratio", count_json(a.void_ratio)}};
-    if (a.tension.rows > 0) {
-        summary.warnings.push_back(
-            {who + "_tension", static_cast<double>(a.tension.rows),
-             fmt::format("{} row(s) of the {} ({}) carry a tensile principal stress, first at "
-                         "step {}, largest +{:.3g} kPa at step {}: the model's own equations "
-                         "left the compressive region, where they do not describe sand",
-                         a.tension.rows, who, model, a.tension.first_step, a.tension.worst,
-                         a.tension.worst_step)});
-    }
-    if (a.void_ratio.rows > 0) {
-        summary.warnings.push_back(
-            {who + "_void_ratio", static_cast<double>(a.void_ratio.rows),
-             fmt::format("{} row(s) of the {} ({}) have a void ratio outside the model's bounds "
-                         "(hypoplasticity: [e_d, e_i] of the Bauer law at the row's pressure; any "
-                         "model: e > 0), first at step {}, up to {:.3g} beyond at step {}",
-                         a.void_ratio.rows, who, model, a.void_ratio.first_step, a.void_ratio.worst,
-                         a.void_ratio.worst_step)});
-    }
+    const std::string subject = fmt::format("{} ({})", who, model);
+    warn(summary, a.tension, who + "_tension", subject, "carry a tensile principal stress",
+         fmt::format("largest +{:.3g} kPa", a.tension.worst),
+         ": the model's own equations left the compressive region, where they do not describe "
+         "sand");
+    warn(summary, a.void_ratio, who + "_void_ratio", subject,
+         "have a void ratio outside the model's bounds (hypoplasticity: [e_d, e_i] of the Bauer "
+         "law at the row's pressure; any model: e > 0)",
+         fmt::format("up to {:.3g} beyond", a.void_ratio.worst), "");
 }
 
 } // namespace ifsim::io
