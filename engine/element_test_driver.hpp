@@ -45,7 +45,7 @@ struct ElementTestCounters {
     double rejected_substeps = 0.0;
     double rate_evaluations = 0.0;
     long constitutive_evaluations = 0;
-    long unreliable_updates = 0; // a safeguard (pressure floor / tension cut-off) acted
+    long unreliable_updates = 0;     // a safeguard (pressure floor / tension cut-off) acted
     long frozen_substep_retries = 0; // steps solved again with frozen substeps (solve_step)
 };
 

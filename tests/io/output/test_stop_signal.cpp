@@ -49,9 +49,8 @@ TEST(StopSignalDeathTest, WatchdogEndsAStuckStepAfterItsLastWord) {
     EXPECT_EXIT(
         {
             const StopSignals installed;
-            StopWatchdog dog(std::chrono::milliseconds(100), [&](int sig) {
-                std::ofstream(marker) << signal_name(sig);
-            });
+            StopWatchdog dog(std::chrono::milliseconds(100),
+                             [&](int sig) { std::ofstream(marker) << signal_name(sig); });
             std::raise(SIGTERM);
             for (;;) { // the stuck step
                 std::this_thread::sleep_for(std::chrono::milliseconds(10));
