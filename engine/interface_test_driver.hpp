@@ -51,10 +51,11 @@ struct InterfaceTestSpec {
     // model), with jumps of up to ~2e-5 relative measured: tighter tolerances can stall.
     double newton_tolerance = 1.0e-4;
     int max_newton_iterations = 40;
-    // Work bound of one step (its cuts included): the interface model's substeps summed over
-    // every Algorithm 1 lane. Past it the run stops with a message naming step and bound instead
-    // of running on for minutes (6 mm of slip in one novel step did not end). 1e7 substeps are
-    // 20-60 s of one core; a 6 mm Stutz step needs 3.5e6.
+    // Work bound of one step (its cuts included): the interface model's substeps in the base
+    // evaluations of Algorithm 1 (counters.model_substeps; the Eq. 37 lanes are not counted). Past
+    // it the run stops with a message naming step and bound instead of running on for minutes (6 mm
+    // of slip in one novel step did not end). 1e7 substeps are 20-60 s of one core; a 6 mm Stutz
+    // step needs 3.5e6.
     double max_step_substeps = 1.0e7;
     std::vector<InterfaceStage> stages;
 };

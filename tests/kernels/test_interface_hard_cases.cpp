@@ -216,6 +216,30 @@ TEST(InterfaceHardCases, HugeTangentialIncrementInOneCall) {
     EXPECT_LT(one.y[3], 58.0);
 }
 
+// The per-call work bound (max_model_substeps): the huge increment above needs far more model
+// substeps than 1000; with that bound the lane fails with cause work_limit, reports the
+// substeps it spent, and keeps its start state bit for bit.
+TEST(InterfaceHardCases, WorkBoundFailsTheLaneCleanly) {
+    const auto mp = l4c(0.9);
+    InterfaceSettings s;
+    s.max_model_substeps = 1000.0;
+    const HState before = start_state();
+    HState st = before;
+    InterfaceStats<double> stats;
+    interface_update<Hypoplasticity, double>(mp, s, st, {-100.0, 1.0e-3, 0.0, -50.0, -50.0, 0.0},
+                                             stats);
+    EXPECT_EQ(stats.status, lane_status::failed);
+    EXPECT_EQ(stats.cause, interface_failure::work_limit);
+    EXPECT_GT(stats.residual, 1000.0); // the substeps spent
+    EXPECT_LT(stats.residual, 2000.0); // checked after every sub-increment
+    expect_state_unchanged(before, st);
+    // The default bound leaves the same call alone.
+    s.max_model_substeps = InterfaceSettings{}.max_model_substeps;
+    interface_update<Hypoplasticity, double>(mp, s, st, {-100.0, 1.0e-3, 0.0, -50.0, -50.0, 0.0},
+                                             stats);
+    EXPECT_EQ(stats.status, lane_status::ok);
+}
+
 // Near-zero normal stress. A point that already sits at t_N = -0.01 kPa shears normally. A
 // point unloaded from -100 kPa to near zero in one increment may fail (it does: the
 // sub-increment count follows the shear strain only, so the last sub-increments must follow a

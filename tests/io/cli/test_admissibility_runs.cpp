@@ -123,5 +123,19 @@ TEST(Admissibility, SmoothNovelBandStopsWithTheTrueCause) {
     EXPECT_EQ(reason.find("residual 0)"), std::string::npos) << reason;
 }
 
+// The per-step work bound of interface tests stops the run at once, naming step and bound (no
+// cutting of the step: a cut redoes the same work).
+TEST(Admissibility, StepWorkBoundStopsTheRunNamingIt) {
+    const fs::path out = test::fresh_dir("adm-bound");
+    const auto r = test::run_cli_captured(
+        {"run", "scenes/simple-shear-cnl.toml", "--out", out.string(), "-q", "--set",
+         "interface.subincrement=adaptive", "--set", "integration.max_step_substeps=5"});
+    ASSERT_EQ(r.code, exit_code::run_failed) << r.err;
+    const std::string reason = summary(out)["reason"];
+    EXPECT_NE(reason.find("step 1 "), std::string::npos) << reason;
+    EXPECT_NE(reason.find("max_step_substeps"), std::string::npos) << reason;
+    EXPECT_EQ(reason.find("cutting"), std::string::npos) << reason;
+}
+
 } // namespace
 } // namespace ifsim::io
