@@ -20,6 +20,13 @@ if(IFSIM_SANITIZE)
                                                  -fno-sanitize-recover=undefined)
   target_link_options(ifsim_options INTERFACE -fsanitize=address,undefined)
 endif()
+if(IFSIM_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+    message(FATAL_ERROR "ifsim: IFSIM_FUZZ needs clang (libFuzzer); use the sanitize preset")
+  endif()
+  # Coverage feedback from all of ifsim's code; fuzz/ links the libFuzzer driver.
+  target_compile_options(ifsim_options INTERFACE -fsanitize=fuzzer-no-link)
+endif()
 
 # Check at configure time which SIMD width the kernels get, so the build reports it and the
 # library and user code cannot silently mix instruction sets (all targets share these flags).

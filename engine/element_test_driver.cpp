@@ -155,7 +155,7 @@ run_typed(const typename M::Params& params, const std::vector<double>& initial,
         const ElementStage& st = stages[s];
         const bool resumed_stage = resume && s == first_stage;
         const Sym<double> stress_start = resumed_stage ? resume->stress_start : stress_of(y);
-        Sym<double> guess = resumed_stage ? resume->guess : Sym<double>{};
+        Sym<double> guess = resumed_stage ? resume->guess : st.first_guess;
         for (int k = resumed_stage ? resume->step_in_stage + 1 : 1; k <= st.steps; ++k) {
             Sym<double> deps_known{};
             Sym<double> target{};

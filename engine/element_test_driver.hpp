@@ -21,6 +21,10 @@ struct ElementStage {
     int steps = 1;
     std::array<bool, 6> stress_controlled{}; // true: dsig_IJ given, false: deps_IJ given
     Sym<double> change{};                    // total change over the stage (strain or stress)
+    // Newton's first guess of the first step's strain increment (stress-controlled components;
+    // later steps start from the step before). A replay of a failed step sets it to the guess
+    // the run had (io/element_test/element_replay.hpp).
+    Sym<double> first_guess{};
 };
 
 struct ElementTestSettings {

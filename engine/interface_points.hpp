@@ -6,6 +6,7 @@
 // penalty friction with its exact return mapping.
 
 #include <chrono>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -98,6 +99,10 @@ public:
         r.cause = rep.first_failed_cause;
         last_band_clamped_ = rep.band_clamped > 0;
         r.residual = points_.output(contact_col::residual)[0];
+        if (!r.ok) {
+            last_failure_ = record_failed_point(points_, 0, opt_, r.cause, r.residual,
+                                                "the interface point of the interface test");
+        }
         r.tau[0] = points_.output(contact_col::traction + 1)[0];
         r.tau[1] = points_.output(contact_col::traction + 2)[0];
         // Columns: slave e_1 (normal: d/d t_N with k_N = 1), master e_2, e_3 (+dg_T1, +dg_T2).
@@ -109,6 +114,9 @@ public:
         }
         return r;
     }
+
+    // The last evaluation that failed (the record of its Algorithm 1 call).
+    const std::optional<FailedContactPoint>& last_failure() const { return last_failure_; }
 
     void commit(InterfaceTestResult& res) {
         points_.commit();
@@ -179,6 +187,7 @@ public:
     }
 
 private:
+    std::optional<FailedContactPoint> last_failure_;
     std::array<double, 2> probe(double t_N, double dg1, double dg2, double s_p1, double s_p2) {
         points_.input(contact_col::t_N)[0] = t_N;
         points_.input(contact_col::dg1)[0] = dg1;
@@ -236,6 +245,9 @@ public:
         }
         return r;
     }
+    // Coulomb friction has no Algorithm 1 call to replay.
+    std::optional<FailedContactPoint> last_failure() const { return std::nullopt; }
+
     void commit(InterfaceTestResult&) {
         tau_[0] = trial_[0];
         tau_[1] = trial_[1];

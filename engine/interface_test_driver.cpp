@@ -107,8 +107,11 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
     double step_start_substeps = 0.0;
     bool over_budget = false;
     std::string budget_why; // the message of the evaluation that went past the bound
+    // The interface point's failure in the last evaluation, if that was why it failed.
+    std::optional<FailedContactPoint> point_failure;
     auto evaluate = [&](const double x[3], const double du[2]) {
         Eval e;
+        point_failure.reset();
         if (over_budget) {
             e.why = budget_why;
             return e;
@@ -135,6 +138,7 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
             return e;
         }
         if (!e.iface.ok) {
+            point_failure = iface.last_failure();
             e.why = fmt::format("the interface point failed: {}{}",
                                 describe_interface_failure(e.iface.cause, e.iface.residual),
                                 iface.diagnose(t_N, e.sample.y[1], e.sample.y[2]));
@@ -271,6 +275,7 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
             }
             if (done < 1.0 - 1.0e-12) {
                 result.ok = false;
+                result.failed_point = point_failure;
                 result.reason =
                     over_budget ? fmt::format("step {} (stage {}, step {} of {}): {}", step, s + 1,
                                               k, st.steps, why)

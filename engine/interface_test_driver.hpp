@@ -11,11 +11,13 @@
 // by perturbation. Local axes: 1 = interface normal, 2 = t1, 3 = t2.
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "engine/batched_update.hpp"
 #include "engine/contact_update.hpp"
+#include "engine/failed_contact_point.hpp"
 #include "engine/model_registry.hpp"
 #include "kernels/coulomb.hpp"
 
@@ -91,6 +93,9 @@ struct InterfaceTestResult {
     double interface_seconds = 0.0; // inside the contact engine
     double sample_seconds = 0.0;    // inside the sample's batched updates
     double driver_seconds = 0.0;
+    // A run that failed because its interface point failed in Algorithm 1: that evaluation,
+    // for a replay (io/replay/interface_replay.hpp).
+    std::optional<FailedContactPoint> failed_point;
 };
 
 // Where a run stands after a committed step: all a resumed run needs to continue bit for bit

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "engine/contact_update.hpp"
+#include "engine/failed_contact_point.hpp"
 #include "engine/model_registry.hpp"
 #include "fem/mesh.hpp"
 #include "fem/mortar_kinematics.hpp"
@@ -159,6 +160,9 @@ public:
     virtual ContactResultant resultant() const = 0;
     // Every point of the pair in the state of the last converged increment.
     virtual std::vector<ContactPointRecord> point_records() const = 0;
+    // The point whose Algorithm 1 call made the last evaluate() fail (continuum interfaces;
+    // empty when that evaluation succeeded): its replay (io/replay/interface_replay.hpp).
+    virtual std::optional<FailedContactPoint> last_failure() const { return std::nullopt; }
     // The committed state, and back (throws std::invalid_argument for another pair's).
     virtual ContactPairSnapshot snapshot() const = 0;
     virtual void restore(const ContactPairSnapshot& snapshot) = 0;

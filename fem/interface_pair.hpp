@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,7 @@ public:
         // Deferred Jacobian: the residual needs only the base lanes; the Eq. 37 lanes run when
         // the solver asks for the tangent (not after the residual that converges).
         defer_ = spec_.defer_jacobian && spec_.options.jacobian != ContactJacobian::analytical;
+        last_failure_.reset();
         ContactReport rep;
         {
             PhaseTimer timer(timers_.kernels);
@@ -68,6 +70,11 @@ public:
             counters_.failed_evaluations += probing_ ? 0 : 1;
             const std::size_t i = rep.first_failed;
             const ContactKinematics& k = kin_->point(i);
+            last_failure_ = record_failed_point(
+                points_, i, defer_ ? base_only_ : spec_.options, rep.first_failed_cause,
+                rep.first_failed_residual,
+                fmt::format("contact pair '{}' point {} at ({:.6g}, {:.6g}, {:.6g})", spec_.name, i,
+                            k.x[0], k.x[1], k.x[2]));
             error = fmt::format(
                 "{} interface point(s) of contact pair '{}' failed in Algorithm 1, first point "
                 "{} at ({:.6g}, {:.6g}, {:.6g}): {}; {}",
@@ -82,6 +89,8 @@ public:
         kin_->assemble(traction_, f_int, nullptr);
         return true;
     }
+
+    std::optional<FailedContactPoint> last_failure() const override { return last_failure_; }
 
     void commit() override {
         points_.commit();
@@ -291,8 +300,9 @@ protected:
 
 private:
     typename M::Params params_;
-    ContactOptions base_only_;  // the spec's options without the Eq. 37 lanes
-    bool defer_ = false;        // the last evaluate() ran the base lanes only
+    ContactOptions base_only_;                       // the spec's options without the Eq. 37 lanes
+    bool defer_ = false;                             // the last evaluate() ran the base lanes only
+    std::optional<FailedContactPoint> last_failure_; // of the last evaluate()
     std::vector<double> relax_; // per point: share lambda of the continuum's in-plane targets
     std::vector<int> calm_;     // per point: increments since its last relaxation
     double k_lo_ = 0.5;         // 1 - sin(kappa phi_c): at-rest bounds of the in-plane targets

@@ -115,8 +115,12 @@ inline bool none(const batch_mask& m) {
 inline batch sqrt(const batch& x) {
     return xsimd::sqrt(x);
 }
+// xsimd's exp turns its argument's exponent into an integer, and its generic code does that by
+// a scalar cast, undefined for -inf: the exp(log 0) of a lane that a select then discards. Below
+// -746 the result is 0 and above 710 inf anyway, so the argument is held there; NaN passes.
 inline batch exp(const batch& x) {
-    return xsimd::exp(x);
+    const batch low(-746.0), high(710.0);
+    return xsimd::exp(xsimd::select(x < low, low, xsimd::select(x > high, high, x)));
 }
 inline batch log(const batch& x) {
     return xsimd::log(x);

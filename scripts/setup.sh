@@ -11,7 +11,8 @@ packages=(g++ cmake ninja-build git pkg-config
           libgtest-dev libgmock-dev libbenchmark-dev
           zlib1g-dev
           python3 python3-matplotlib python3-meshio python3-vtk9  # field files read back in tests
-          gmsh)  # meshes of scripts/study_fe_meshes.py from scenes/meshes/*.geo
+          gmsh  # meshes of scripts/study_fe_meshes.py from scenes/meshes/*.geo
+          clang libclang-rt-14-dev)  # the sanitize preset: ASan + UBSan builds and libFuzzer harnesses
 
 missing=()
 for p in "${packages[@]}"; do

@@ -65,6 +65,24 @@ constexpr double imbalance_warning = 1.0e-6;
 
 // Once, when the first stage has measured it: an initial state that the supports and loads do
 // not hold is almost always a scene mistake (a lateral stress on a free face).
+// The contact point whose Algorithm 1 call failed last, if the stage failed on one.
+void keep_failed_point(const fem::StaticSolver& solver, const BoundaryValueScene& scene,
+                       BoundaryValueRunOutcome& out) {
+    for (const auto& pair : solver.contacts()) {
+        auto failure = pair->last_failure();
+        if (!failure) {
+            continue;
+        }
+        for (std::size_t i = 0; i < scene.contacts.size(); ++i) {
+            if (scene.contacts[i].pair.name == pair->spec().name) {
+                out.failed_point = std::move(failure);
+                out.failed_pair = i;
+                return;
+            }
+        }
+    }
+}
+
 void warn_initial_imbalance(const fem::StaticSolver& solver, ProgressLine& line, bool& warned) {
     const fem::InitialImbalance& b = solver.initial_imbalance();
     if (warned || !b.evaluated) {
@@ -221,6 +239,7 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
             if (!r.ok) {
                 out.ok = false;
                 out.reason = r.reason;
+                keep_failed_point(*solver, scene, out);
             }
             steps_before += stage.steps;
             if (fields) {

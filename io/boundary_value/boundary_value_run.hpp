@@ -6,9 +6,11 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "engine/failed_contact_point.hpp"
 #include "fem/static_solver.hpp"
 #include "io/boundary_value/boundary_value_checkpoint.hpp"
 #include "io/boundary_value/boundary_value_scene.hpp"
@@ -39,6 +41,10 @@ struct BoundaryValueRunOutcome {
     nlohmann::ordered_json point_recorders;     // the points the point recorders chose
     long checkpoints = 0;                       // checkpoints written by this run
     double checkpoint_seconds = 0.0;
+    // A stage that failed because a contact point failed in Algorithm 1: that call, and its
+    // pair's index in scene.contacts (for the replay, io/replay/interface_replay.hpp).
+    std::optional<FailedContactPoint> failed_point;
+    std::size_t failed_pair = 0;
 };
 
 // Checkpoints of a run (--checkpoint-every, --checkpoint-minutes) and a run resumed from one.

@@ -14,11 +14,13 @@
 #include "io/boundary_value/boundary_value_scene.hpp"
 #include "io/cli/exit_codes.hpp"
 #include "io/cli/resumed_run.hpp"
+#include "io/cli/scene_reading.hpp"
 #include "io/cli/thread_limit.hpp"
 #include "io/element_test/element_checkpoint.hpp"
 #include "io/element_test/element_history.hpp"
 #include "io/element_test/element_test_run.hpp"
 #include "io/element_test/element_test_scene.hpp"
+#include "io/interface_point/interface_point_run.hpp"
 #include "io/interface_test/interface_checkpoint.hpp"
 #include "io/interface_test/interface_test_run.hpp"
 #include "io/interface_test/interface_test_scene.hpp"
@@ -30,6 +32,8 @@
 #include "io/output/run_folder.hpp"
 #include "io/output/stop_signal.hpp"
 #include "io/output/summary_writer.hpp"
+#include "io/replay/element_replay.hpp"
+#include "io/replay/interface_replay.hpp"
 #include "io/scene/interface_formulation_reader.hpp"
 #include "io/scene/scene_error.hpp"
 #include "io/scene/scene_toml.hpp"
@@ -183,25 +187,30 @@ int write_summary_or_report(const fs::path& dir, const RunSummary& summary, int 
     return code;
 }
 
-// A scene read for its kind.
-struct Scene {
-    std::string kind;
-    ElementTestScene element;
-    InterfaceTestScene interface;
-    BoundaryValueScene boundary_value;
-};
-
 // Checkpoints written by a run, for summary.json.
 struct CheckpointCount {
     long written = 0;
     double seconds = 0.0;
 };
 
+// Writes the replay of a failed point (io/replay/) and names it in the summary and its reason;
+// a replay that cannot be written is a note, not a second failure.
+template <class Write>
+void note_replay(RunSummary& summary, Write write) {
+    try {
+        const fs::path path = write();
+        summary.details["replay"] = path.string();
+        summary.reason += fmt::format(" (replay: ifsim run {})", path.string());
+    } catch (const std::exception& e) {
+        summary.warnings.push_back({"replay_not_written", 1.0, e.what()});
+    }
+}
+
 // Runs the scene's kind and fills the summary with its results. Throws std::runtime_error when
 // history.csv cannot be written at all.
-void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double parse_s,
-              const CheckpointRequest& checkpoints, const ResumedRun* resumed, RunSummary& summary,
-              CheckpointCount& written, std::string& label, long& steps) {
+void run_kind(Scene& scene, const toml::table& table, const RunOptions& opt, const fs::path& dir,
+              double parse_s, const CheckpointRequest& checkpoints, const ResumedRun* resumed,
+              RunSummary& summary, CheckpointCount& written, std::string& label, long& steps) {
     const ProgressMode progress = opt.quiet ? ProgressMode::never : opt.progress;
     const bool simd = resumed ? resumed->run().simd : !opt.scalar;
     if (scene.kind == "boundary-value") {
@@ -215,6 +224,13 @@ void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double p
         bv.resume = resumed ? &resumed->boundary_value : nullptr;
         const BoundaryValueRunOutcome run = run_boundary_value_scene(s, dir, progress, simd, bv);
         add_boundary_value_results(summary, s, run, parse_s);
+        if (run.failed_point) {
+            note_replay(summary, [&] {
+                return write_interface_replay(dir, *run.failed_point,
+                                              s.contacts[run.failed_pair].formulation.material,
+                                              summary.reason);
+            });
+        }
         written = {run.checkpoints, run.checkpoint_seconds};
         label = fmt::format("{}D FE", s.mesh_spec.dimension);
         if (s.contacts.size() == 1) {
@@ -225,6 +241,16 @@ void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double p
         steps = s.total_steps();
         return;
     }
+    if (scene.kind == "interface-point") {
+        const InterfacePointScene& s = scene.interface_point;
+        const InterfacePointOutcome run = run_interface_point_scene(s, dir, simd);
+        add_interface_point_results(summary, s, run, parse_s);
+        label =
+            fmt::format("one interface point, {} {}",
+                        formulation_name(s.point.options.interface.formulation), s.material.model);
+        steps = 1;
+        return;
+    }
     if (scene.kind == "interface-test") {
         InterfaceTestScene& s = scene.interface;
         s.spec.contact.simd = simd;
@@ -232,6 +258,12 @@ void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double p
         const InterfaceRunOutcome run = run_interface_test_scene(
             s, dir, progress, checkpoints, resumed ? &resumed->interface : nullptr);
         add_interface_test_results(summary, s, run, parse_s);
+        if (run.result.failed_point) {
+            note_replay(summary, [&] {
+                return write_interface_replay(dir, *run.result.failed_point, s.interface_material,
+                                              summary.reason);
+            });
+        }
         written = {run.checkpoints, run.checkpoint_seconds};
         const std::string_view f = formulation_name(s.spec.contact.interface.formulation);
         label = s.coulomb() ? std::string(f) : fmt::format("{} {}", f, s.interface_material.model);
@@ -243,6 +275,9 @@ void run_kind(Scene& scene, const RunOptions& opt, const fs::path& dir, double p
     const ElementRunOutcome run = run_element_test_scene(s, dir, progress, checkpoints,
                                                          resumed ? &resumed->element : nullptr);
     add_element_test_results(summary, s, run, parse_s);
+    if (run.point_failed) {
+        note_replay(summary, [&] { return write_element_replay(dir, table, s, run); });
+    }
     written = {run.checkpoints, run.checkpoint_seconds};
     label = s.material.model;
     steps = s.total_steps();
@@ -298,23 +333,12 @@ int run_command(const RunOptions& opt) {
         }
         scene.kind = scene_kind(table, opt.scene);
         summary.kind = scene.kind;
-        if (scene.kind == "element-test") {
-            scene.element = read_element_test_scene(table, opt.scene);
-        } else if (scene.kind == "interface-test") {
-            scene.interface = read_interface_test_scene(table, opt.scene);
-        } else if (scene.kind == "boundary-value") {
+        if (scene.kind == "boundary-value") {
             apply_field_switches(table, opt);
-            scene.boundary_value = read_boundary_value_scene(table, opt.scene);
-            if (!scene.boundary_value.mesh_spec.file.empty()) {
-                mesh_path = fs::absolute(scene.boundary_value.mesh_spec.path).string();
-            }
-        } else {
-            throw SceneError(opt.scene, "kind",
-                             fmt::format("kind \"{}\" is not supported by this build; expected "
-                                         "\"element-test\", \"interface-test\" or "
-                                         "\"boundary-value\"",
-                                         scene.kind),
-                             line_in_file(*table.get("kind")));
+        }
+        read_scene_of_kind(scene, table, opt.scene);
+        if (scene.kind == "boundary-value" && !scene.boundary_value.mesh_spec.file.empty()) {
+            mesh_path = fs::absolute(scene.boundary_value.mesh_spec.path).string();
         }
     } catch (const SceneError& e) {
         scene_error = e.what();
@@ -428,7 +452,7 @@ int run_command(const RunOptions& opt) {
         }
     });
     try {
-        run_kind(scene, opt, dir, parse_s, checkpoints, checkpoint ? &*checkpoint : nullptr,
+        run_kind(scene, table, opt, dir, parse_s, checkpoints, checkpoint ? &*checkpoint : nullptr,
                  summary, written, label, steps);
         if (summary.details.contains("effects")) {
             summary.details["effects"]["checkpoints"] = checkpoints.enabled();

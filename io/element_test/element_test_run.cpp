@@ -35,10 +35,21 @@ ElementRunOutcome run_element_test_scene(const ElementTestScene& scene,
     StepCheckpoints<ElementTestCheckpoint, ElementTestPosition> saved(
         checkpoints, "element-test", scene.settings.update.simd, resume, history, dir,
         &write_element_test_checkpoint, scene.total_steps());
+    if (resume) {
+        out.last = resume->position;
+    }
+    // Every committed position is kept for a replay of a step that fails.
+    const auto on_step = [&, save = saved.callback()](const ElementTestPosition& p) {
+        out.last = p;
+        if (save) {
+            save(p);
+        }
+    };
     try {
-        out.result = run_element_test(scene.material.choice, scene.initial_state, scene.stages,
-                                      scene.settings, on_row, resume ? &resume->position : nullptr,
-                                      saved.callback());
+        out.result =
+            run_element_test(scene.material.choice, scene.initial_state, scene.stages,
+                             scene.settings, on_row, resume ? &resume->position : nullptr, on_step);
+        out.point_failed = !out.result.ok;
     } catch (const RunInterrupted& e) {
         out.result.ok = false;
         out.result.reason = e.what();

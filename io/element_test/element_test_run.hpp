@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 
 #include "engine/element_test_driver.hpp"
 #include "engine/state_admissibility.hpp"
@@ -22,6 +23,10 @@ struct ElementRunOutcome {
     long checkpoints = 0;        // checkpoints written by this run
     double checkpoint_seconds = 0.0;
     StateAdmissibility admissibility; // rows whose states left the model's sand region
+    // The material point failed (not an interruption or a writer error): `last` is the
+    // position before the failed step (empty: the first step failed), what a replay needs.
+    bool point_failed = false;
+    std::optional<ElementTestPosition> last;
 };
 
 // Writes DIR/history.csv (kept with the rows so far when the run fails), and DIR/checkpoint

@@ -12,7 +12,7 @@ namespace {
 
 ElementStage read_stage(const TableReader& t) {
     t.allow_only({"steps", "deps_11", "deps_22", "deps_33", "deps_12", "deps_13", "deps_23",
-                  "dsig_11", "dsig_22", "dsig_33", "dsig_12", "dsig_13", "dsig_23"});
+                  "dsig_11", "dsig_22", "dsig_33", "dsig_12", "dsig_13", "dsig_23", "first_guess"});
     ElementStage stage;
     stage.steps = static_cast<int>(t.integer("steps", 1, 100'000'000));
     for (int j = 0; j < 6; ++j) {
@@ -28,6 +28,9 @@ ElementStage read_stage(const TableReader& t) {
         }
         stage.stress_controlled[j] = stress;
         stage.change[j] = stress ? t.number(dsig) : t.number(deps);
+    }
+    if (t.has("first_guess")) {
+        stage.first_guess = t.six_numbers("first_guess");
     }
     return stage;
 }

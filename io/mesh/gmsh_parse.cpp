@@ -124,7 +124,10 @@ GmshContent parse_gmsh_file(const std::string& path) {
     if (in.bad()) {
         throw MeshFileError(path, 0, "cannot read the mesh file");
     }
-    std::string bytes = std::move(text).str();
+    return parse_gmsh_bytes(std::move(text).str(), path);
+}
+
+GmshContent parse_gmsh_bytes(std::string bytes, const std::string& path) {
     if (!is_binary_gmsh(bytes)) {
         return parse_gmsh_text(std::move(bytes), path);
     }

@@ -18,6 +18,9 @@ GmshContent parse_gmsh_file(const std::string& path);
 // The same for the file's text (`file` names it in messages).
 GmshContent parse_gmsh_text(std::string text, const std::string& file);
 
+// A file's bytes, ASCII or binary (`file` names it in messages).
+GmshContent parse_gmsh_bytes(std::string bytes, const std::string& file);
+
 // The $PhysicalNames section after its header (the same in both versions).
 void read_physical_names(GmshCursor& c, GmshContent& out);
 

@@ -80,6 +80,17 @@ const std::vector<Rule>& interface_rules() {
     return rules;
 }
 
+// One Algorithm 1 call: row 0 the committed state, row 1 the call's result (when it succeeded).
+const std::vector<Rule>& interface_point_rules() {
+    static const std::vector<Rule> rules = {
+        {"step", false, {"-", "0 = the point's state before the call, 1 = after it"}},
+        {"t_n", false, {"kPa", "normal traction t_N (row 0: the band's sigma_N)"}},
+        {"t_t1", false, {"kPa", "shear traction along the local t1"}},
+        {"t_t2", false, {"kPa", "shear traction along the local t2"}},
+    };
+    return rules;
+}
+
 const std::vector<Rule>& boundary_value_rules() {
     static const std::vector<Rule> rules = {
         {"increment", false, {"-", "converged increment, 0 = initial state"}},
@@ -126,6 +137,10 @@ std::optional<ColumnDescription> describe_column(std::string_view kind, std::str
     }
     if (kind == "interface-test") {
         return match(interface_rules(), column);
+    }
+    if (kind == "interface-point") {
+        const auto own = match(interface_point_rules(), column);
+        return own ? own : match(interface_rules(), column);
     }
     if (kind == "boundary-value") {
         // <pair>.t_n, ...: a pair's own means, as the main columns.

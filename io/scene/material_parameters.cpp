@@ -149,6 +149,7 @@ MaterialSpec build_material(const TableReader& t, const std::string& model, doub
             p = *set;
         } else {
             p = read_inline(t.table("parameters"), m);
+            spec.inline_parameters = *given->as_table();
         }
         complete(p, spec.roughness, intergranular_strain);
         p.prepare();

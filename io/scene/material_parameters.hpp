@@ -21,9 +21,10 @@ namespace ifsim::io {
 
 struct MaterialSpec {
     MaterialChoice choice;
-    std::string model;      // hypoplasticity | sanisand | linear-elastic
-    std::string parameters; // name of the built-in set, or "inline"
-    double roughness = 1.0; // kappa (hypoplasticity and sanisand)
+    std::string model;             // hypoplasticity | sanisand | linear-elastic
+    std::string parameters;        // name of the built-in set, or "inline"
+    double roughness = 1.0;        // kappa (hypoplasticity and sanisand)
+    toml::table inline_parameters; // the scene's table when parameters = "inline" (for replays)
 };
 
 // Reads and checks [material]. Throws SceneError.

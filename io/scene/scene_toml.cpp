@@ -2,6 +2,8 @@
 
 #include <charconv>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <system_error>
 #include <vector>
 
@@ -101,8 +103,18 @@ toml::table load_scene_table(const std::string& file) {
     if (!std::filesystem::is_regular_file(file, ec)) {
         throw SceneError(file, "", "cannot open the scene file; expected an existing TOML file");
     }
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (!in || in.bad()) {
+        throw SceneError(file, "", "cannot read the scene file");
+    }
+    return parse_scene_text(std::move(text).str(), file);
+}
+
+toml::table parse_scene_text(std::string_view text, const std::string& file) {
     try {
-        return toml::parse_file(file);
+        return toml::parse(text, file);
     } catch (const toml::parse_error& err) {
         throw SceneError(file, "",
                          fmt::format("column {}: not valid TOML: {}", err.source().begin.column,

@@ -23,6 +23,9 @@ inline constexpr std::string_view override_source = "--set";
 // the line and column of the problem).
 toml::table load_scene_table(const std::string& file);
 
+// The same for a scene's text (`file` names it in messages and is its source path).
+toml::table parse_scene_text(std::string_view text, const std::string& file);
+
 // Applies one "KEY=VALUE" override to the scene. Throws SceneError naming the file and KEY.
 void apply_override(toml::table& scene, std::string_view assignment, const std::string& file);
 

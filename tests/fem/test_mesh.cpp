@@ -25,11 +25,9 @@ TEST(Mesh, RectangleSetsSitOnTheirSides) {
         for (int n : m.node_set(name)) {
             EXPECT_DOUBLE_EQ(m.coordinate(n, where.first), where.second) << name;
         }
-        EXPECT_EQ(m.nodes_of_faces(name), [&] {
-            auto v = m.node_set(name);
-            std::sort(v.begin(), v.end());
-            return v;
-        }()) << name;
+        auto sorted_nodes = m.node_set(name);
+        std::sort(sorted_nodes.begin(), sorted_nodes.end());
+        EXPECT_EQ(m.nodes_of_faces(name), sorted_nodes) << name;
     }
     EXPECT_EQ(m.node_set("left").size(), 3u);
     EXPECT_EQ(m.face_set("top").size(), 4u);

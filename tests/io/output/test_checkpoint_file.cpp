@@ -63,7 +63,9 @@ TEST(CheckpointFile, EveryValueComesBackBitForBit) {
     CheckpointWriter w;
     w.put("state", d);
     w.put("counters", i);
-    w.put("scene", std::string("kind = \"boundary-value\"\n\0binary", 33));
+    // A scene text with a NUL inside (sizeof counts the literal's terminator: minus 1).
+    static constexpr char with_nul[] = "kind = \"boundary-value\"\n\0binary";
+    w.put("scene", std::string(with_nul, sizeof(with_nul) - 1));
     w.put("empty", std::vector<double>{});
     const fs::path p = scratch("round-trip.ckp");
     w.write(p);
@@ -75,7 +77,7 @@ TEST(CheckpointFile, EveryValueComesBackBitForBit) {
         EXPECT_TRUE(same_bits(back[k], d[k])) << k;
     }
     EXPECT_EQ(r.integers("counters"), i);
-    EXPECT_EQ(r.text("scene"), std::string("kind = \"boundary-value\"\n\0binary", 33));
+    EXPECT_EQ(r.text("scene"), std::string(with_nul, sizeof(with_nul) - 1));
     EXPECT_TRUE(r.doubles("empty").empty());
     EXPECT_TRUE(r.has("state"));
     EXPECT_FALSE(r.has("missing"));

@@ -1,0 +1,25 @@
+#pragma once
+// The replay of a contact point that failed in Algorithm 1 (interface test or contact pair of
+// a boundary-value problem): an interface-point scene with the failed call's model, options,
+// committed state and inputs, which `ifsim run` evaluates alone.
+
+#include <filesystem>
+#include <string>
+
+#include <toml++/toml.h>
+
+#include "engine/failed_contact_point.hpp"
+#include "io/scene/material_parameters.hpp"
+
+namespace ifsim::io {
+
+toml::table interface_replay_scene(const FailedContactPoint& point, const MaterialSpec& material,
+                                   const std::string& description);
+
+// Writes it to DIR/replay.toml and returns the path; `run_reason` is the failed run's reason.
+std::filesystem::path write_interface_replay(const std::filesystem::path& dir,
+                                             const FailedContactPoint& point,
+                                             const MaterialSpec& material,
+                                             const std::string& run_reason);
+
+} // namespace ifsim::io

@@ -1,0 +1,31 @@
+#include "io/replay/replay_file.hpp"
+
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "io/output/atomic_file.hpp"
+
+namespace ifsim::io {
+
+toml::array replay_numbers(std::span<const double> values) {
+    toml::array a;
+    for (double v : values) {
+        a.push_back(v);
+    }
+    return a;
+}
+
+std::filesystem::path write_replay(const std::filesystem::path& dir, const toml::table& scene,
+                                   const std::string& what_failed) {
+    const std::filesystem::path path = dir / replay_file_name;
+    std::ostringstream text;
+    text << fmt::format("# Replay: {}\n#\n# ifsim run {} --out REPLAY_DIR\n# fails the same way "
+                        "(docs/reliability.md, \"Replaying a failed point\").\n\n",
+                        what_failed, path.string());
+    text << scene << '\n';
+    write_file_atomically(path, text.str());
+    return path;
+}
+
+} // namespace ifsim::io

@@ -1,0 +1,24 @@
+#pragma once
+// Writing a replay scene: a small scene that reproduces a failed material or contact point
+// with `ifsim run`, written as DIR/replay.toml next to the failed run's results. The TOML is
+// printed by toml++ with 17 significant digits, so every number reads back bit for bit.
+
+#include <filesystem>
+#include <span>
+#include <string>
+
+#include <toml++/toml.h>
+
+namespace ifsim::io {
+
+inline constexpr const char* replay_file_name = "replay.toml";
+
+// A TOML array of the numbers.
+toml::array replay_numbers(std::span<const double> values);
+
+// Writes `scene` with a comment header (what failed, how to run it) to DIR/replay.toml and
+// returns the path. Throws std::runtime_error when the file cannot be written.
+std::filesystem::path write_replay(const std::filesystem::path& dir, const toml::table& scene,
+                                   const std::string& what_failed);
+
+} // namespace ifsim::io
