@@ -50,6 +50,14 @@ void ContactSet::commit() {
     }
 }
 
+std::size_t ContactSet::points() const {
+    std::size_t n = 0;
+    for (const auto& c : pairs_) {
+        n += c->kinematics().n_points();
+    }
+    return n;
+}
+
 ContactSetCounters ContactSet::counters() const {
     ContactSetCounters s;
     for (const auto& c : pairs_) {

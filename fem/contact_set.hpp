@@ -23,6 +23,8 @@ struct ContactSetCounters : ContactPairCounters {
 class ContactSet {
 public:
     bool empty() const { return pairs_.empty(); }
+    // Contact points of all pairs.
+    std::size_t points() const;
     void add(const Mesh& mesh, ContactPairSpec spec);
     const std::vector<std::unique_ptr<ContactPair>>& pairs() const { return pairs_; }
 

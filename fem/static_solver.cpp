@@ -318,6 +318,8 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
         const double t_step = double(k) / steps;
         int depth = resumed ? from.depth : 0;
         int streak = resumed ? from.streak : 0;
+        step_substeps_start_ = contacts_.counters().model_substeps;
+        step_over_budget_ = false;
         while (true) {
             const double h = 1.0 / (double(steps) * std::ldexp(1.0, depth));
             const bool last = t_a + h >= t_step - 1.0e-12 * h;
@@ -353,6 +355,13 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
                     break;
                 }
                 continue;
+            }
+            if (step_over_budget_) {
+                result.ok = false;
+                result.reason = fmt::format("stage {} ('{}'), step {} of {}, pseudo-time {:.6g} to "
+                                            "{:.6g}: {}",
+                                            stage_count_, stage.name, k, steps, t_a, t_b, error);
+                return result;
             }
             if (depth >= max_cuts) {
                 result.ok = false;

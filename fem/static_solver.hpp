@@ -241,6 +241,9 @@ private:
     bool newton_step(double t_end, double& rel, double& correction, IncrementInfo& info,
                      std::string& error);
     bool residual_pass(double t, std::span<const double> du, std::string& error);
+    // False (with the message) once the nominal step under way spent more interface-model
+    // substeps than SolverSettings::max_step_substeps allows; sets step_over_budget_.
+    bool within_step_budget(std::string& error);
     // settings.check_tangent: records the tangent at du_ against central differences along
     // the solved correction; leaves residual_ and the force level as they were.
     void check_tangent(double t_end, const IncrementInfo& info);
@@ -272,12 +275,14 @@ private:
     std::vector<double> u_stage_start_;
 
     // Displacements and forces.
-    std::vector<double> u_;        // committed
-    std::vector<double> du_;       // trial increment
-    std::vector<double> du_last_;  // last converged increment of the stage
-    std::vector<double> du_start_; // the iterate a line search starts from
-    double dt_last_ = 0.0;         // its pseudo-time length (0: none yet)
-    std::vector<double> f_int_;    // trial internal force, full
+    std::vector<double> u_;            // committed
+    std::vector<double> du_;           // trial increment
+    std::vector<double> du_last_;      // last converged increment of the stage
+    std::vector<double> du_start_;     // the iterate a line search starts from
+    double dt_last_ = 0.0;             // its pseudo-time length (0: none yet)
+    double step_substeps_start_ = 0.0; // interface-model substeps when the nominal step began
+    bool step_over_budget_ = false;
+    std::vector<double> f_int_; // trial internal force, full
     std::vector<double> f_int_committed_;
     std::vector<double> f_ext_;
     std::vector<double> f_ext_committed_;

@@ -61,6 +61,21 @@ const SolverCounters& StaticSolver::counters() const {
     return counters_;
 }
 
+bool StaticSolver::within_step_budget(std::string& error) {
+    const double spent = contacts_.counters().model_substeps - step_substeps_start_;
+    const double points = static_cast<double>(std::max<std::size_t>(1, contacts_.points()));
+    if (spent <= settings_.max_step_substeps * points) {
+        return true;
+    }
+    step_over_budget_ = true;
+    error = fmt::format("the interface models needed {:.3g} substeps in this step ({:.3g} per "
+                        "contact point), more than the bound of {:.3g} per contact point and "
+                        "step ([solver] max_step_substeps); smaller steps, a thicker shear band "
+                        "or adaptive sub-increments cost less",
+                        spent, spent / points, settings_.max_step_substeps);
+    return false;
+}
+
 SolverTimers StaticSolver::timers() const {
     SolverTimers t = timers_;
     t.gravity = loads_.timers().gravity;
@@ -142,6 +157,9 @@ bool StaticSolver::residual_pass(double t, std::span<const double> du, std::stri
     if (!contacts_.empty()) {
         contact_du_.assign(du.begin(), du.end());
         if (!contacts_.evaluate(contact_du_, f_int_, error)) {
+            return false;
+        }
+        if (!within_step_budget(error)) {
             return false;
         }
     }

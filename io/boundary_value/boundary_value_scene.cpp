@@ -24,13 +24,14 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
     t.allow_only({"residual_tolerance", "displacement_tolerance", "max_iterations", "max_cuts",
                   "growth_after", "max_line_search", "stagnation_tolerance", "gather_tolerance",
                   "max_gathers", "linear_solver", "tangent", "predictor", "extrapolate",
-                  "check_tangent"});
+                  "check_tangent", "max_step_substeps"});
     s.residual_tolerance =
         t.number_or("residual_tolerance", s.residual_tolerance, Bounds::open(0.0, 1.0));
     s.displacement_tolerance =
         t.number_or("displacement_tolerance", s.displacement_tolerance, Bounds::open(0.0, 1.0));
     s.max_iterations = static_cast<int>(t.integer_or("max_iterations", s.max_iterations, 1, 1000));
     s.max_cuts = static_cast<int>(t.integer_or("max_cuts", s.max_cuts, 0, 30));
+    s.max_step_substeps = t.number_or("max_step_substeps", s.max_step_substeps, Bounds::positive());
     s.growth_after = static_cast<int>(t.integer_or("growth_after", s.growth_after, 1, 1000));
     s.max_line_search = static_cast<int>(t.integer_or("max_line_search", s.max_line_search, 0, 30));
     s.stagnation_tolerance =

@@ -133,14 +133,18 @@ const CheckpointReader::Section& CheckpointReader::section(const std::string& na
 std::vector<double> CheckpointReader::doubles(const std::string& name) const {
     const Section& s = section(name, kind_doubles);
     std::vector<double> v(s.bytes.size() / sizeof(double));
-    std::memcpy(v.data(), s.bytes.data(), v.size() * sizeof(double));
+    if (!v.empty()) { // memcpy from or to a null pointer is undefined even for 0 bytes
+        std::memcpy(v.data(), s.bytes.data(), v.size() * sizeof(double));
+    }
     return v;
 }
 
 std::vector<std::int64_t> CheckpointReader::integers(const std::string& name) const {
     const Section& s = section(name, kind_integers);
     std::vector<std::int64_t> v(s.bytes.size() / sizeof(std::int64_t));
-    std::memcpy(v.data(), s.bytes.data(), v.size() * sizeof(std::int64_t));
+    if (!v.empty()) { // memcpy from or to a null pointer is undefined even for 0 bytes
+        std::memcpy(v.data(), s.bytes.data(), v.size() * sizeof(std::int64_t));
+    }
     return v;
 }
 

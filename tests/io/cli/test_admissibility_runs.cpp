@@ -137,5 +137,22 @@ TEST(Admissibility, StepWorkBoundStopsTheRunNamingIt) {
     EXPECT_EQ(reason.find("cutting"), std::string::npos) << reason;
 }
 
+// The FE solver's bound per nominal step and contact point: the shear box's first shear step
+// needs about 3000 substeps per point; a bound of 100 stops it there, without cuts, and the
+// consolidation stage before it (no shear, few substeps) completes.
+TEST(Admissibility, FeStepWorkBoundStopsTheStageNamingIt) {
+    const fs::path out = test::fresh_dir("adm-fe-bound");
+    const auto r =
+        test::run_cli_captured({"run", "scenes/fe-simple-shear-cnl-2d.toml", "--out", out.string(),
+                                "-q", "--set", "solver.max_step_substeps=100"});
+    ASSERT_EQ(r.code, exit_code::run_failed) << r.err;
+    const auto j = summary(out);
+    const std::string reason = j["reason"];
+    EXPECT_NE(reason.find("stage 2 ('shear'), step 1 of"), std::string::npos) << reason;
+    EXPECT_NE(reason.find("max_step_substeps"), std::string::npos) << reason;
+    EXPECT_EQ(reason.find("halving"), std::string::npos) << reason;
+    EXPECT_EQ(j["counters"]["cuts"], 0);
+}
+
 } // namespace
 } // namespace ifsim::io
