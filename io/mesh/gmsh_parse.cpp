@@ -1,5 +1,6 @@
 #include "io/mesh/gmsh_parse.hpp"
 
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -115,6 +116,11 @@ GmshContent parse_gmsh_text(std::string text, const std::string& file) {
 }
 
 GmshContent parse_gmsh_file(const std::string& path) {
+    // A device or FIFO (a scene's mesh file = "/dev/zero") would be read without end.
+    std::error_code ec;
+    if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
+        throw MeshFileError(path, 0, "not a regular file (a directory, device or pipe)");
+    }
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         throw MeshFileError(path, 0, "cannot open the mesh file (missing or unreadable)");
