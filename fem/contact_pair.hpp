@@ -163,6 +163,7 @@ public:
     // The point whose Algorithm 1 call made the last evaluate() fail (continuum interfaces;
     // empty when that evaluation succeeded): its replay (io/replay/interface_replay.hpp).
     virtual std::optional<FailedContactPoint> last_failure() const { return std::nullopt; }
+    virtual void forget_failure() {}
     // The committed state, and back (throws std::invalid_argument for another pair's).
     virtual ContactPairSnapshot snapshot() const = 0;
     virtual void restore(const ContactPairSnapshot& snapshot) = 0;

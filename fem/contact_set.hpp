@@ -25,6 +25,12 @@ public:
     bool empty() const { return pairs_.empty(); }
     // Contact points of all pairs.
     std::size_t points() const;
+    // Drops every pair's record of a failed point (ContactPair::last_failure).
+    void forget_failures() {
+        for (auto& p : pairs_) {
+            p->forget_failure();
+        }
+    }
     void add(const Mesh& mesh, ContactPairSpec spec);
     const std::vector<std::unique_ptr<ContactPair>>& pairs() const { return pairs_; }
 

@@ -91,6 +91,7 @@ public:
     }
 
     std::optional<FailedContactPoint> last_failure() const override { return last_failure_; }
+    void forget_failure() override { last_failure_.reset(); }
 
     void commit() override {
         points_.commit();

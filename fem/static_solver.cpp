@@ -308,6 +308,11 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
     StageResult result;
     const int steps = std::max(1, stage.steps);
     const int max_cuts = std::max(0, settings_.max_cuts);
+    // The step work bound applies inside the steps only, and ends with them.
+    struct BudgetOff {
+        StaticSolver& s;
+        ~BudgetOff() { s.budget_active_ = s.step_over_budget_ = false; }
+    } budget_off{*this};
     for (int k = std::max(1, from.step); k <= steps; ++k) {
         // Automatic increment control inside the nominal step [t_a, t_step]: the increment is
         // halved on failure (up to max_cuts times) and doubled again after growth_after
@@ -318,8 +323,10 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
         const double t_step = double(k) / steps;
         int depth = resumed ? from.depth : 0;
         int streak = resumed ? from.streak : 0;
-        step_substeps_start_ = contacts_.counters().model_substeps;
+        step_substeps_start_ =
+            contacts_.counters().model_substeps - (resumed ? from.step_substeps : 0.0);
         step_over_budget_ = false;
+        budget_active_ = true;
         while (true) {
             const double h = 1.0 / (double(steps) * std::ldexp(1.0, depth));
             const bool last = t_a + h >= t_step - 1.0e-12 * h;
@@ -347,7 +354,9 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
                     }
                 }
                 info.next =
-                    last ? StageCursor{k + 1, t_step, 0, 0} : StageCursor{k, t_a, depth, streak};
+                    last ? StageCursor{k + 1, t_step, 0, 0, 0.0}
+                         : StageCursor{k, t_a, depth, streak,
+                                       contacts_.counters().model_substeps - step_substeps_start_};
                 if (on_increment) {
                     on_increment(info);
                 }

@@ -101,6 +101,7 @@ struct StageCursor {
     double t_a = 0.0;
     int depth = 0;
     int streak = 0;
+    double step_substeps = 0.0; // interface-model substeps the step had spent (its work bound)
 };
 
 struct IncrementInfo {
@@ -281,7 +282,9 @@ private:
     std::vector<double> du_start_;     // the iterate a line search starts from
     double dt_last_ = 0.0;             // its pseudo-time length (0: none yet)
     double step_substeps_start_ = 0.0; // interface-model substeps when the nominal step began
+    bool budget_active_ = false;       // inside stage_from's steps
     bool step_over_budget_ = false;
+    std::string budget_error_;
     std::vector<double> f_int_; // trial internal force, full
     std::vector<double> f_int_committed_;
     std::vector<double> f_ext_;

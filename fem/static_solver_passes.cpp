@@ -62,17 +62,22 @@ const SolverCounters& StaticSolver::counters() const {
 }
 
 bool StaticSolver::within_step_budget(std::string& error) {
+    if (!budget_active_) { // an evaluation outside a stage's steps (evaluate(), imbalance)
+        return true;
+    }
     const double spent = contacts_.counters().model_substeps - step_substeps_start_;
     const double points = static_cast<double>(std::max<std::size_t>(1, contacts_.points()));
     if (spent <= settings_.max_step_substeps * points) {
         return true;
     }
     step_over_budget_ = true;
-    error = fmt::format("the interface models needed {:.3g} substeps in this step ({:.3g} per "
-                        "contact point), more than the bound of {:.3g} per contact point and "
-                        "step ([solver] max_step_substeps); smaller steps, a thicker shear band "
-                        "or adaptive sub-increments cost less",
-                        spent, spent / points, settings_.max_step_substeps);
+    budget_error_ =
+        fmt::format("the interface models needed {:.3g} substeps in this step ({:.3g} per "
+                    "contact point), more than the bound of {:.3g} per contact point and "
+                    "step ([solver] max_step_substeps); smaller steps, a thicker shear band "
+                    "or adaptive sub-increments cost less",
+                    spent, spent / points, settings_.max_step_substeps);
+    error = budget_error_;
     return false;
 }
 
@@ -142,6 +147,13 @@ void StaticSolver::begin_stage(const Stage& stage) {
 
 // Residual R = f_ext(t) - f_int(u + du) on the equations: continuum, springs, contact.
 bool StaticSolver::residual_pass(double t, std::span<const double> du, std::string& error) {
+    if (step_over_budget_) { // no more work in a step past its bound (line search, probes)
+        error = budget_error_;
+        return false;
+    }
+    // A failed contact point's record belongs to this pass only: a stage that fails on a
+    // material point must not carry an earlier attempt's contact failure as its replay.
+    contacts_.forget_failures();
     {
         PhaseTimer timer(timers_.element);
         continuum_->strains(mesh_, du);
@@ -156,10 +168,10 @@ bool StaticSolver::residual_pass(double t, std::span<const double> du, std::stri
     }
     if (!contacts_.empty()) {
         contact_du_.assign(du.begin(), du.end());
-        if (!contacts_.evaluate(contact_du_, f_int_, error)) {
-            return false;
-        }
-        if (!within_step_budget(error)) {
+        // The bound first: a pass that also failed in Algorithm 1 spent its work too (the
+        // costliest passes are the ones that fail on a per-call bound).
+        const bool evaluated = contacts_.evaluate(contact_du_, f_int_, error);
+        if (!within_step_budget(error) || !evaluated) {
             return false;
         }
     }

@@ -20,6 +20,7 @@ runs=(
   "simple-shear-cnl --set stage.1.steps=40 --set stage.1.du_t1=0.001 --set interface.subincrement=adaptive"
   "hard-cases/interface-sanisand-loose-cns --set normal.stiffness=500.0 --set stage.1.steps=40 --set stage.2.steps=1 --set stage.2.du_t1=0.0 --set stage.3.steps=1 --set stage.3.du_t1=0.0 --set stage.4.steps=1 --set stage.4.du_t1=0.0 --set stage.5.steps=1 --set stage.5.du_t1=0.0"
   "appendix-c-continuum"
+  "interface-point-probe"
   "appendix-c-stutz-continuum"
   "cyclic-cns-stutz"
   "fe-contact-patch-2d"

@@ -7,7 +7,14 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 fuzz_seconds=60
-if [ "${1:-}" = "--fuzz-seconds" ]; then fuzz_seconds=$2; fi
+while (($#)); do
+  case $1 in
+    --fuzz-seconds) [ $# -ge 2 ] || { echo "run-sanitized-tests: --fuzz-seconds needs a value" >&2; exit 2; }
+                    fuzz_seconds=$2; shift 2 ;;
+    -h|--help) sed -n '2,5p' "$0"; exit 0 ;;
+    *) echo "run-sanitized-tests: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
 
 IFSIM_PRESET=sanitize bash scripts/setup.sh  # packages (clang, libFuzzer), then this build
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \

@@ -68,6 +68,7 @@ void write_boundary_value_checkpoint(const std::filesystem::path& dir,
           ints({static_cast<std::int64_t>(c.stage_index), c.cursor.step, c.cursor.depth,
                 c.cursor.streak, c.steps_before, s.stage_count, s.committed_references}));
     w.put("cursor_t", std::vector<double>{c.cursor.t_a});
+    w.put("cursor_step_substeps", std::vector<double>{c.cursor.step_substeps});
     w.put("iterations", std::vector<std::int64_t>(c.iterations.begin(), c.iterations.end()));
     w.put("u", s.u);
     w.put("u_stage_start", s.u_stage_start);
@@ -115,6 +116,8 @@ BoundaryValueCheckpoint read_boundary_value_checkpoint(const std::filesystem::pa
     s.stage_count = static_cast<int>(pos[5]);
     s.committed_references = pos[6];
     c.cursor.t_a = r.real("cursor_t");
+    // Checkpoints written before the FE step bound have no such section: a fresh budget.
+    c.cursor.step_substeps = r.has("cursor_step_substeps") ? r.real("cursor_step_substeps") : 0.0;
     for (std::int64_t v : r.integers("iterations")) {
         c.iterations.push_back(static_cast<int>(v));
     }

@@ -228,7 +228,7 @@ void run_kind(Scene& scene, const toml::table& table, const RunOptions& opt, con
             note_replay(summary, [&] {
                 return write_interface_replay(dir, *run.failed_point,
                                               s.contacts[run.failed_pair].formulation.material,
-                                              summary.reason);
+                                              summary.reason, simd);
             });
         }
         written = {run.checkpoints, run.checkpoint_seconds};
@@ -261,7 +261,7 @@ void run_kind(Scene& scene, const toml::table& table, const RunOptions& opt, con
         if (run.result.failed_point) {
             note_replay(summary, [&] {
                 return write_interface_replay(dir, *run.result.failed_point, s.interface_material,
-                                              summary.reason);
+                                              summary.reason, simd);
             });
         }
         written = {run.checkpoints, run.checkpoint_seconds};
@@ -276,7 +276,7 @@ void run_kind(Scene& scene, const toml::table& table, const RunOptions& opt, con
                                                          resumed ? &resumed->element : nullptr);
     add_element_test_results(summary, s, run, parse_s);
     if (run.point_failed) {
-        note_replay(summary, [&] { return write_element_replay(dir, table, s, run); });
+        note_replay(summary, [&] { return write_element_replay(dir, table, s, run, simd); });
     }
     written = {run.checkpoints, run.checkpoint_seconds};
     label = s.material.model;

@@ -15,7 +15,8 @@ bool is_run_output(const std::string& name) {
     static const char* const exact[] = {
         "summary.json", "summary.json.tmp",   "history.csv", "history.csv.partial",
         "scene.toml",   "scene.toml.partial", "mesh.pvd",    "fields",
-        "overview.png", "cycles.png",         "checkpoint",  "checkpoint.partial"};
+        "overview.png", "cycles.png",         "checkpoint",  "checkpoint.partial",
+        "replay.toml",  "replay.toml.partial"};
     if (std::find(std::begin(exact), std::end(exact), name) != std::end(exact)) {
         return true;
     }

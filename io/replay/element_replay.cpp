@@ -86,9 +86,9 @@ toml::table element_replay_scene(const toml::table& scene_table, const ElementTe
 std::filesystem::path write_element_replay(const std::filesystem::path& dir,
                                            const toml::table& scene_table,
                                            const ElementTestScene& scene,
-                                           const ElementRunOutcome& run) {
+                                           const ElementRunOutcome& run, bool simd) {
     return write_replay(dir, element_replay_scene(scene_table, scene, run),
-                        "the material point of this element test failed in the step below");
+                        "the material point of this element test failed in the step below", simd);
 }
 
 } // namespace ifsim::io

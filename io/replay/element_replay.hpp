@@ -22,6 +22,6 @@ toml::table element_replay_scene(const toml::table& scene_table, const ElementTe
 std::filesystem::path write_element_replay(const std::filesystem::path& dir,
                                            const toml::table& scene_table,
                                            const ElementTestScene& scene,
-                                           const ElementRunOutcome& run);
+                                           const ElementRunOutcome& run, bool simd);
 
 } // namespace ifsim::io

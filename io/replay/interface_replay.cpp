@@ -1,5 +1,9 @@
 #include "io/replay/interface_replay.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
 #include <fmt/format.h>
 
 #include "io/interface_point/algorithm1_options.hpp"
@@ -34,13 +38,21 @@ toml::table interface_replay_scene(const FailedContactPoint& point, const Materi
 std::filesystem::path write_interface_replay(const std::filesystem::path& dir,
                                              const FailedContactPoint& point,
                                              const MaterialSpec& material,
-                                             const std::string& run_reason) {
+                                             const std::string& run_reason, bool simd) {
+    const auto finite = [](const auto& values) {
+        return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
+    };
+    if (!finite(point.state) || !finite(point.inputs)) {
+        throw std::runtime_error(fmt::format("the failed call of {} has non-finite inputs or "
+                                             "state; nothing a scene can replay",
+                                             point.where));
+    }
     const std::string description =
         fmt::format("replay of the Algorithm 1 call of {} that failed: {}", point.where,
                     describe_interface_failure(point.cause, point.residual));
     return write_replay(
         dir, interface_replay_scene(point, material, description),
-        fmt::format("{} failed in Algorithm 1; the run: {}", point.where, run_reason));
+        fmt::format("{} failed in Algorithm 1; the run: {}", point.where, run_reason), simd);
 }
 
 } // namespace ifsim::io

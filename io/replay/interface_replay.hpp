@@ -17,9 +17,11 @@ toml::table interface_replay_scene(const FailedContactPoint& point, const Materi
                                    const std::string& description);
 
 // Writes it to DIR/replay.toml and returns the path; `run_reason` is the failed run's reason.
+// Throws std::runtime_error when the call's state or inputs are not finite (cause
+// "non-finite input": a scene cannot hold them) or the file cannot be written.
 std::filesystem::path write_interface_replay(const std::filesystem::path& dir,
                                              const FailedContactPoint& point,
                                              const MaterialSpec& material,
-                                             const std::string& run_reason);
+                                             const std::string& run_reason, bool simd);
 
 } // namespace ifsim::io

@@ -16,9 +16,10 @@ inline constexpr const char* replay_file_name = "replay.toml";
 // A TOML array of the numbers.
 toml::array replay_numbers(std::span<const double> values);
 
-// Writes `scene` with a comment header (what failed, how to run it) to DIR/replay.toml and
-// returns the path. Throws std::runtime_error when the file cannot be written.
+// Writes `scene` with a comment header (what failed, how to run it: with --scalar when the
+// failed run ran on the scalar path) to DIR/replay.toml and returns the path. Throws
+// std::runtime_error when the file cannot be written.
 std::filesystem::path write_replay(const std::filesystem::path& dir, const toml::table& scene,
-                                   const std::string& what_failed);
+                                   const std::string& what_failed, bool simd);
 
 } // namespace ifsim::io
