@@ -5,7 +5,10 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -88,6 +91,22 @@ TEST(ReplayScenes, InterfacePointSceneGivesBackTheCallBitForBit) {
     EXPECT_EQ(text_of(algorithm1_table(back.point.options)), text_of(algorithm1_table(p.options)));
     EXPECT_NE(text_of(algorithm1_table(back.point.options)),
               text_of(algorithm1_table(ContactOptions{})));
+}
+
+// A call with a non-finite input (cause "non-finite input") has no scene: writing its replay
+// throws, and the run turns that into the warning replay_not_written.
+TEST(ReplayScenes, NonFiniteCallIsNotWritten) {
+    FailedContactPoint p;
+    const MaterialSpec material = inline_sanisand(0.9);
+    p.state.assign(static_cast<std::size_t>(state_size(material.choice) + contact_state::n_extra),
+                   -1.0);
+    p.inputs.fill(0.0);
+    p.inputs[contact_col::dg1] = std::numeric_limits<double>::quiet_NaN();
+    const auto dir = std::filesystem::temp_directory_path();
+    EXPECT_THROW(write_interface_replay(dir, p, material, "test", true), std::runtime_error);
+    p.inputs[contact_col::dg1] = 0.0;
+    p.state[3] = std::numeric_limits<double>::infinity();
+    EXPECT_THROW(write_interface_replay(dir, p, material, "test", true), std::runtime_error);
 }
 
 // A drained triaxial stage of 10 steps; the replay of its 6th step from the position after the
