@@ -33,6 +33,7 @@ struct InterfaceResponse {
     double dtau_dtN[2] = {0.0, 0.0};
     double dtau_dsp[2][2] = {{0.0, 0.0}, {0.0, 0.0}}; // d tau_a / d s_p(b+1), novel only
     double residual = 0.0;
+    bool has_jacobian = false; // the d tau fields were computed
 };
 
 // A continuum model used as interface model through Algorithm 1 and the contact engine.
@@ -58,11 +59,18 @@ public:
         // t_N is prescribed by the driver, not a penalty: k_N = 1 makes the slave's normal
         // perturbation lane the derivative with respect to t_N itself.
         points_.input(contact_col::k_N)[0] = 1.0;
+        base_opt_ = opt;
+        base_opt_.jacobian = ContactJacobian::analytical;
     }
 
-    InterfaceResponse evaluate(double t_N, double dg1, double dg2, double s_p1, double s_p2) {
+    // with_jacobian = false evaluates the base lane alone (tractions and trial state, the same
+    // bits as with the Jacobian): the driver asks for the derivatives only where another Newton
+    // iteration follows, since the Eq. 37 lanes and the s_p probes cost most of an evaluation.
+    InterfaceResponse evaluate(double t_N, double dg1, double dg2, double s_p1, double s_p2,
+                               bool with_jacobian) {
         InterfaceResponse r;
-        if (opt_.interface.formulation == InterfaceFormulation::novel) {
+        r.has_jacobian = with_jacobian;
+        if (with_jacobian && opt_.interface.formulation == InterfaceFormulation::novel) {
             // The novel formulation's traction also depends on the extrapolated continuum
             // stress (Eqs. 19-20), which the Eq. 37 lanes do not perturb. At point level the
             // sample is that continuum, so the driver's Newton needs d tau / d s_p too: two
@@ -88,7 +96,8 @@ public:
         points_.input(contact_col::s_p1)[0] = s_p1;
         points_.input(contact_col::s_p2)[0] = s_p2;
         const auto t0 = Clock::now();
-        const ContactReport rep = engine_.update(points_, params_, opt_);
+        const ContactReport rep = with_jacobian ? engine_.update(points_, params_, opt_)
+                                                : base_engine_.update(points_, params_, base_opt_);
         res_.interface_seconds += seconds_since(t0);
         res_.counters.interface_evaluations += rep.constitutive_evaluations;
         res_.counters.constitutive_evaluations += rep.constitutive_evaluations;
@@ -105,6 +114,9 @@ public:
         }
         r.tau[0] = points_.output(contact_col::traction + 1)[0];
         r.tau[1] = points_.output(contact_col::traction + 2)[0];
+        if (!with_jacobian) {
+            return r;
+        }
         // Columns: slave e_1 (normal: d/d t_N with k_N = 1), master e_2, e_3 (+dg_T1, +dg_T2).
         for (int a = 0; a < 2; ++a) {
             r.dtau_dtN[a] = points_.jacobian(0, 1 + a, 0);
@@ -199,6 +211,7 @@ private:
         res_.interface_seconds += seconds_since(t0);
         res_.counters.interface_evaluations += rep.constitutive_evaluations;
         res_.counters.constitutive_evaluations += rep.constitutive_evaluations;
+        res_.counters.model_substeps += rep.model_substeps; // part of the step's work bound
         return {points_.output(contact_col::traction + 1)[0],
                 points_.output(contact_col::traction + 2)[0]};
     }
@@ -207,6 +220,8 @@ private:
     const ContactOptions& opt_;
     ContactOptions probe_opt_;
     ContactEngine<Mi> probe_engine_;
+    ContactOptions base_opt_;       // the base lane alone (no Jacobian columns)
+    ContactEngine<Mi> base_engine_; // own lane buffer: no reallocation between the two kinds
     InterfaceTestResult& res_;
     ContactPoints<Mi> points_;
     ContactEngine<Mi> engine_;
@@ -226,7 +241,7 @@ public:
         : CoulombInterface(p, tau1, tau2) {
         res_ = &res;
     }
-    InterfaceResponse evaluate(double t_N, double dg1, double dg2, double, double) {
+    InterfaceResponse evaluate(double t_N, double dg1, double dg2, double, double, bool) {
         const auto t0 = Clock::now();
         const auto c = coulomb_update<double>(p_, t_N, tau_[0], tau_[1], dg1, dg2);
         if (res_) {
@@ -235,6 +250,7 @@ public:
             res_->counters.constitutive_evaluations += 1.0;
         }
         InterfaceResponse r;
+        r.has_jacobian = true;
         r.tau[0] = trial_[0] = c.tau1;
         r.tau[1] = trial_[1] = c.tau2;
         for (int a = 0; a < 2; ++a) {

@@ -109,7 +109,7 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
     std::string budget_why; // the message of the evaluation that went past the bound
     // The interface point's failure in the last evaluation, if that was why it failed.
     std::optional<FailedContactPoint> point_failure;
-    auto evaluate = [&](const double x[3], const double du[2]) {
+    auto evaluate = [&](const double x[3], const double du[2], bool with_jacobian) {
         Eval e;
         point_failure.reset();
         if (over_budget) {
@@ -124,7 +124,7 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
             return e;
         }
         // Novel: the in-plane interface stresses follow the adjacent continuum (Eqs. 19-20).
-        e.iface = iface.evaluate(t_N, x[0], x[1], e.sample.y[1], e.sample.y[2]);
+        e.iface = iface.evaluate(t_N, x[0], x[1], e.sample.y[1], e.sample.y[2], with_jacobian);
         const double spent = result.counters.model_substeps - step_start_substeps;
         if (spent > spec.max_step_substeps) {
             over_budget = true;
@@ -188,7 +188,7 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
     auto solve = [&](const double du[2], const double guess[3]) {
         Solve out;
         double x[3] = {guess[0], guess[1], guess[2]};
-        Eval cur = evaluate(x, du);
+        Eval cur = evaluate(x, du, false);
         for (int it = 0;; ++it) {
             if (!cur.ok) {
                 out.why = cur.why;
@@ -208,6 +208,14 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
                 return out;
             }
             ++result.counters.newton_iterations;
+            if (!cur.iface.has_jacobian) {
+                // Another iteration follows: the derivatives at x (the same residual again).
+                cur = evaluate(x, du, true);
+                if (!cur.ok) {
+                    out.why = cur.why;
+                    return out;
+                }
+            }
             const Eigen::Vector3d dx =
                 jacobian(cur).fullPivLu().solve(-Eigen::Vector3d(cur.R[0], cur.R[1], cur.R[2]));
             if (!dx.allFinite()) {
@@ -221,7 +229,7 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
                 for (int c = 0; c < 3; ++c) {
                     xt[c] = x[c] + alpha * dx(c);
                 }
-                trial = evaluate(xt, du);
+                trial = evaluate(xt, du, false);
                 if (trial.ok && trial.rmax < cur.rmax) {
                     break;
                 }
