@@ -31,7 +31,10 @@ inline constexpr int n = 6, t1 = 9, t2 = 12; // frame vectors, 3 columns each
 // d s_p / d t_N of the caller's in-plane targets (0 when they do not follow t_N; e.g. targets
 // bounded by a multiple of t_N): the normal perturbation lanes move s_p with t_N.
 inline constexpr int dsp1_dtn = 15, dsp2_dtn = 16;
-inline constexpr int n_inputs = 17;
+// > 0: the base lane takes exactly this many equal sub-increments (a frozen discretisation, for
+// a caller whose Newton stalls on the step selection's noise); 0: its own control.
+inline constexpr int forced = 17;
+inline constexpr int n_inputs = 18;
 // outputs
 inline constexpr int traction = 0; // t_N, tau1, tau2
 inline constexpr int jacobian = 3; // 3 * (2 ndim) columns: comp + 3 * column

@@ -229,7 +229,8 @@ private:
             lanes_.col(s_p2)[l] =
                 cp.input(contact_col::s_p2)[i] + cp.input(contact_col::dsp2_dtn)[i] * dtn;
             // Perturbed lanes follow their base's discretisation.
-            lanes_.col(forced)[l] = k == 0 ? 0.0 : std::max(1.0, lanes_.col(subincrements)[i]);
+            lanes_.col(forced)[l] = k == 0 ? cp.input(contact_col::forced)[i]
+                                           : std::max(1.0, lanes_.col(subincrements)[i]);
             for (int c = 0; c < ContactPoints<M>::n_state_cols; ++c) {
                 lanes_.col(state + c)[l] = cp.committed(c)[i];
             }

@@ -33,7 +33,8 @@ struct InterfaceResponse {
     double dtau_dtN[2] = {0.0, 0.0};
     double dtau_dsp[2][2] = {{0.0, 0.0}, {0.0, 0.0}}; // d tau_a / d s_p(b+1), novel only
     double residual = 0.0;
-    bool has_jacobian = false; // the d tau fields were computed
+    bool has_jacobian = false;  // the d tau fields were computed
+    double subincrements = 0.0; // Algorithm 1 sub-increments of the base lane (0: none)
 };
 
 // A continuum model used as interface model through Algorithm 1 and the contact engine.
@@ -66,10 +67,12 @@ public:
     // with_jacobian = false evaluates the base lane alone (tractions and trial state, the same
     // bits as with the Jacobian): the driver asks for the derivatives only where another Newton
     // iteration follows, since the Eq. 37 lanes and the s_p probes cost most of an evaluation.
+    // forced_subincrements > 0 takes that many equal sub-increments (a frozen discretisation).
     InterfaceResponse evaluate(double t_N, double dg1, double dg2, double s_p1, double s_p2,
-                               bool with_jacobian) {
+                               bool with_jacobian, double forced_subincrements) {
         InterfaceResponse r;
         r.has_jacobian = with_jacobian;
+        points_.input(contact_col::forced)[0] = forced_subincrements; // also for the probes
         if (with_jacobian && opt_.interface.formulation == InterfaceFormulation::novel) {
             // The novel formulation's traction also depends on the extrapolated continuum
             // stress (Eqs. 19-20), which the Eq. 37 lanes do not perturb. At point level the
@@ -105,6 +108,7 @@ public:
         last_subincrements_ = rep.subincrements;
         last_newton_ = rep.newton_iterations;
         r.ok = rep.ok();
+        r.subincrements = rep.subincrements;
         r.cause = rep.first_failed_cause;
         last_band_clamped_ = rep.band_clamped > 0;
         r.residual = points_.output(contact_col::residual)[0];
@@ -241,7 +245,7 @@ public:
         : CoulombInterface(p, tau1, tau2) {
         res_ = &res;
     }
-    InterfaceResponse evaluate(double t_N, double dg1, double dg2, double, double, bool) {
+    InterfaceResponse evaluate(double t_N, double dg1, double dg2, double, double, bool, double) {
         const auto t0 = Clock::now();
         const auto c = coulomb_update<double>(p_, t_N, tau_[0], tau_[1], dg1, dg2);
         if (res_) {

@@ -78,6 +78,7 @@ struct InterfaceTestCounters {
     long newton_iterations = 0;
     long step_cuts = 0;          // halvings of steps whose Newton failed
     long band_clamped_steps = 0; // steps in which d_s was held at its floor (clamp_band)
+    long frozen_retries = 0;     // step solves redone with their first discretisation frozen
     double subincrements = 0.0;  // Algorithm 1 sub-increments (base evaluations)
     double interface_newton_iterations = 0.0;
     double constitutive_evaluations = 0.0; // interface (all lanes) + sample

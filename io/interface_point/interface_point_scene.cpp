@@ -73,7 +73,7 @@ InterfacePointScene read_interface_point_scene(const toml::table& table, const s
 
     const TableReader inc = root.table("increment");
     inc.allow_only({"normal_traction", "penalty", "slip_increment", "in_plane_stress",
-                    "in_plane_stress_slope", "normal", "tangent1", "tangent2"});
+                    "in_plane_stress_slope", "normal", "tangent1", "tangent2", "subincrements"});
     p.inputs.fill(0.0);
     p.inputs[contact_col::t_N] = inc.number("normal_traction");
     p.inputs[contact_col::k_N] = inc.number_or("penalty", 1.0, Bounds::non_negative());
@@ -92,6 +92,7 @@ InterfacePointScene read_interface_point_scene(const toml::table& table, const s
     read_inputs(inc, "normal", 3, contact_col::n, p, "global components");
     read_inputs(inc, "tangent1", 3, contact_col::t1, p, "global components");
     read_inputs(inc, "tangent2", 3, contact_col::t2, p, "global components");
+    p.inputs[contact_col::forced] = inc.integer_or("subincrements", 0, 0, 1000000000);
     return scene;
 }
 
@@ -119,6 +120,7 @@ toml::table increment_table(const FailedContactPoint& point) {
     t.insert("normal", replay_numbers(in.subspan(contact_col::n, 3)));
     t.insert("tangent1", replay_numbers(in.subspan(contact_col::t1, 3)));
     t.insert("tangent2", replay_numbers(in.subspan(contact_col::t2, 3)));
+    t.insert("subincrements", static_cast<std::int64_t>(in[contact_col::forced]));
     return t;
 }
 

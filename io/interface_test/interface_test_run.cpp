@@ -93,6 +93,7 @@ void add_interface_test_results(RunSummary& summary, const InterfaceTestScene& s
                         {"newton_iterations", c.newton_iterations},
                         {"step_cuts", c.step_cuts},
                         {"band_clamped_steps", c.band_clamped_steps},
+                        {"frozen_retries", c.frozen_retries},
                         {"subincrements", rounded(c.subincrements)},
                         {"constitutive_evaluations", rounded(c.constitutive_evaluations)},
                         {"interface_newton_iterations", rounded(c.interface_newton_iterations)},

@@ -58,6 +58,7 @@ TEST(ReplayScenes, InterfacePointSceneGivesBackTheCallBitForBit) {
         p.inputs[k] = -0.1 / (1.0 + static_cast<double>(k));
     }
     p.inputs[contact_col::k_N] = 1.0e5 / 3.0; // a penalty is >= 0
+    p.inputs[contact_col::forced] = 7.0;      // a count of equal sub-increments
     // Options away from their defaults, every kind of field.
     p.options.interface.formulation = InterfaceFormulation::stutz;
     p.options.interface.ndim = 2;

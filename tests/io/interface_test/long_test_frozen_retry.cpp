@@ -1,0 +1,103 @@
+// A step whose Newton iteration stalls on the noise of adaptive step selection (the residual
+// jumps by about the integration tolerances as the unknowns move) is solved again with the
+// discretisation of its first evaluation frozen (label "long": the case needs 47 steps of a
+// loose Sanisand band, about 13 s).
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "io/cli/exit_codes.hpp"
+#include "tests/io/scene_test_support.hpp"
+
+namespace ifsim::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Loose Sanisand (e = 0.95, 20 kPa) under 500 kPa/mm CNS, 1 mm forward and a reversal in
+// steps of 0.01 mm: before the retry, step 47 stalled at a relative residual of 1.6e-4
+// against the tolerance 1e-4, also cut into 64 parts.
+const std::string stall_scene = R"(
+kind = "interface-test"
+[interface]
+formulation = "novel"
+model = "sanisand"
+roughness = 0.9
+shear_band_thickness = 0.003
+subincrement = "adaptive"
+void_ratio = 0.95
+[sample]
+model = "sanisand"
+height = 0.02
+void_ratio = 0.95
+stress = [-20.0, -10.0, -10.0, 0.0, 0.0, 0.0]
+[normal]
+control = "constant-stiffness"
+stiffness = 500.0
+stiffness_unit = "kPa/mm"
+[[stage]]
+steps = 40
+du_t1 = 0.001
+[[stage]]
+steps = 7
+du_t1 = -0.00007
+)";
+
+TEST(InterfaceFrozenRetry, StepStalledOnStepSelectionNoiseCompletes) {
+    const std::string scene = test::write_scene(stall_scene, "frozen-retry");
+    const fs::path out = test::fresh_dir("frozen-retry");
+    const auto r = test::run_cli_captured({"run", scene, "--out", out.string(), "-q"});
+    ASSERT_EQ(r.code, exit_code::ok) << r.err;
+    const auto summary = nlohmann::json::parse(test::read_text(out / "summary.json"));
+    EXPECT_EQ(summary["status"], "ok");
+    EXPECT_EQ(summary["rows"], 48);
+    // The run needed the retry: without it this scene fails at step 47.
+    EXPECT_GT(summary["counters"]["frozen_retries"].get<int>(), 0);
+
+    // The frozen solves meet the same equations: every row keeps the interface in equilibrium
+    // with the sample (shear) and the CNS spring (normal) to the Newton tolerance.
+    const std::string csv = test::read_text(out / "history.csv");
+    std::istringstream lines(csv);
+    std::string header;
+    std::getline(lines, header);
+    std::vector<std::string> names;
+    {
+        std::istringstream h(header);
+        for (std::string c; std::getline(h, c, ',');) {
+            names.push_back(c);
+        }
+    }
+    auto col = [&](const std::string& name) {
+        const auto it = std::find(names.begin(), names.end(), name);
+        EXPECT_NE(it, names.end()) << name;
+        return static_cast<std::size_t>(it - names.begin());
+    };
+    const std::size_t tn = col("t_n"), sn = col("s_n"), ss = col("sample_s11");
+    int rows = 0;
+    for (std::string line; std::getline(lines, line); ++rows) {
+        std::vector<double> v;
+        std::istringstream l(line);
+        for (std::string c; std::getline(l, c, ',');) {
+            v.push_back(std::stod(c));
+        }
+        ASSERT_EQ(v.size(), names.size());
+        for (double x : v) {
+            ASSERT_TRUE(std::isfinite(x));
+        }
+        // sigma_N of the band and the sample's s11 both carry t_N (Eq. 18).
+        EXPECT_NEAR(v[ss], v[tn], 1.0e-4 * std::max(1.0, std::abs(v[tn])));
+        EXPECT_NEAR(v[sn], v[tn], 1.0e-2 * std::max(1.0, std::abs(v[tn])));
+        EXPECT_LT(v[tn], 0.0);
+    }
+    EXPECT_EQ(rows, 48);
+}
+
+} // namespace
+} // namespace ifsim::io
