@@ -42,6 +42,7 @@ template <class Mi>
 class ContinuumInterface {
 public:
     static constexpr int NS = Mi::n_state;
+    static constexpr double normal_lane_stiffness = 1.0e8; // kPa/m, as an FE penalty
     ContinuumInterface(const typename Mi::Params& p, const std::vector<double>& y0,
                        const ContactOptions& opt, InterfaceTestResult& res)
         : params_(p), opt_(opt), res_(res), points_(1, 3) {
@@ -57,9 +58,13 @@ public:
         points_.set_state(0, y);
         const double n[3] = {1, 0, 0}, t1[3] = {0, 1, 0}, t2[3] = {0, 0, 1};
         points_.set_frame(0, n, t1, t2);
-        // t_N is prescribed by the driver, not a penalty: k_N = 1 makes the slave's normal
-        // perturbation lane the derivative with respect to t_N itself.
-        points_.input(contact_col::k_N)[0] = 1.0;
+        // t_N is prescribed by the driver, not a penalty. The slave's normal lane perturbs t_N
+        // by k_N theta (at most 1 % of |t_N|, ContactEngine::axis_theta); with k_N = 1 that
+        // was 1.5e-8 kPa, far below Algorithm 1's own tolerance on sigma_N = t_N, and the
+        // column d tau / d t_N was noise (of order 1e4 instead of 0.1): the step Newton stalled
+        // near 1e-4 or moved the wrong way. A penalty as in the FE solver gives the lane the
+        // same perturbation as there; the column is divided by it (d t_N = k_N d g_N).
+        points_.input(contact_col::k_N)[0] = normal_lane_stiffness;
         base_opt_ = opt;
         base_opt_.jacobian = ContactJacobian::analytical;
     }
@@ -121,9 +126,9 @@ public:
         if (!with_jacobian) {
             return r;
         }
-        // Columns: slave e_1 (normal: d/d t_N with k_N = 1), master e_2, e_3 (+dg_T1, +dg_T2).
+        // Columns: slave e_1 (normal: d/d t_N times k_N), master e_2, e_3 (+dg_T1, +dg_T2).
         for (int a = 0; a < 2; ++a) {
-            r.dtau_dtN[a] = points_.jacobian(0, 1 + a, 0);
+            r.dtau_dtN[a] = points_.jacobian(0, 1 + a, 0) / normal_lane_stiffness;
             for (int b = 0; b < 2; ++b) {
                 r.dtau_dg[a][b] = points_.jacobian(0, 1 + a, 3 + 1 + b);
             }
@@ -215,7 +220,6 @@ private:
         res_.interface_seconds += seconds_since(t0);
         res_.counters.interface_evaluations += rep.constitutive_evaluations;
         res_.counters.constitutive_evaluations += rep.constitutive_evaluations;
-        res_.counters.model_substeps += rep.model_substeps; // part of the step's work bound
         return {points_.output(contact_col::traction + 1)[0],
                 points_.output(contact_col::traction + 2)[0]};
     }
