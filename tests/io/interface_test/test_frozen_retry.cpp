@@ -1,7 +1,6 @@
 // A step whose Newton iteration stalls on the noise of adaptive step selection (the residual
 // jumps by about the integration tolerances as the unknowns move) is solved again with the
-// discretisation of its first evaluation frozen (label "long": the case needs 47 steps of a
-// loose Sanisand band, about 13 s).
+// discretisation of its first evaluation frozen: 47 steps of a loose Sanisand band (2-3 s).
 
 #include <algorithm>
 #include <cmath>
@@ -22,8 +21,9 @@ namespace {
 namespace fs = std::filesystem;
 
 // Loose Sanisand (e = 0.95, 20 kPa) under 500 kPa/mm CNS, 1 mm forward and a reversal in
-// steps of 0.01 mm: before the retry, step 47 stalled at a relative residual of 1.6e-4
-// against the tolerance 1e-4, also cut into 64 parts.
+// steps of 0.01 mm: before the retry (and before the normal Jacobian lane perturbed t_N as in
+// the FE solver), step 47 stalled at a relative residual of 1.6e-4 against the tolerance 1e-4,
+// also cut into 64 parts.
 const std::string stall_scene = R"(
 kind = "interface-test"
 [interface]
@@ -58,7 +58,7 @@ TEST(InterfaceFrozenRetry, StepStalledOnStepSelectionNoiseCompletes) {
     const auto summary = nlohmann::json::parse(test::read_text(out / "summary.json"));
     EXPECT_EQ(summary["status"], "ok");
     EXPECT_EQ(summary["rows"], 48);
-    // The run needed the retry: without it this scene fails at step 47.
+    // The run went through the retry (one step stalls on its adaptive discretisation).
     EXPECT_GT(summary["counters"]["frozen_retries"].get<int>(), 0);
 
     // The frozen solves meet the same equations: every row keeps the interface in equilibrium
