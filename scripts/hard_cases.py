@@ -44,6 +44,7 @@ STRESS_SETS = {
     "element-test": [("s11", "s22", "s33", "s12", "s13", "s23")],
     "interface-test": [("sample_s11", "sample_s22", "sample_s33", "sample_s12", "sample_s13", None),
                        ("s_n", "s_p1", "s_p2", "t_t1", "t_t2", None)],
+    "interface-point": [("s_n", "s_p1", "s_p2", "t_t1", "t_t2", None)],
 }
 VOID_COLUMNS = ("e", "e_interface", "e_sample")
 
