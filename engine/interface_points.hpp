@@ -118,8 +118,9 @@ public:
         last_band_clamped_ = rep.band_clamped > 0;
         r.residual = points_.output(contact_col::residual)[0];
         if (!r.ok) {
-            last_failure_ = record_failed_point(points_, 0, opt_, r.cause, r.residual,
-                                                "the interface point of the interface test");
+            last_failure_ =
+                record_failed_point(points_, 0, with_jacobian ? opt_ : base_opt_, r.cause,
+                                    r.residual, "the interface point of the interface test");
         }
         r.tau[0] = points_.output(contact_col::traction + 1)[0];
         r.tau[1] = points_.output(contact_col::traction + 2)[0];

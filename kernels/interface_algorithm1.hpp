@@ -263,24 +263,26 @@ void interface_step(const typename M::Params& mp, const InterfaceSettings& s,
             fa, full.residual, simd::select(fh, a.residual, simd::select(fb, b.residual, err)));
         c.stats.residual = simd::select(too_small, failed_residual, c.stats.residual);
         c.active = c.active && !too_small;
-    } else {
-        // Uniform sub-increments: the lanes of a fixed run, and in an adaptive run a batch of
-        // only forced lanes (its Jacobian lanes, which take the base's count of equal
-        // sub-increments). A sub-increment whose Newton fails is halved and the lane goes on
-        // at that size. Equal sub-increments need not be integrable where the base took
-        // unequal ones (a first sub-increment across a reversal), and a fixed sub-increment at
-        // a Sanisand reversal can leave the band's Newton cycling (residual 0.01-0.07 after 30
-        // or 100 iterations) where its halves converge. The decision depends only on the
-        // lane's own data; a Jacobian lane and its reference lane (the base re-run on its
-        // discretisation) almost always split at the same places, so their differences stay
-        // derivatives of one discretisation. Failing them instead dropped their point's
-        // Jacobian columns (docs/large-scale-test.md).
+    } else if (s.adaptive) {
+        // Only forced lanes in this batch: the Jacobian lanes of an adaptive run. They take the
+        // base's count of equal sub-increments, which need not be integrable where the base
+        // took unequal ones (a first sub-increment across a reversal): a sub-increment whose
+        // Newton fails is halved and the lane goes on at that size. The decision depends only
+        // on the lane's own data, and the reference lane (the base re-run on this
+        // discretisation) and its perturbations almost always split at the same places, so
+        // their differences stay derivatives of one discretisation. Failing them instead
+        // dropped their point's Jacobian columns (docs/large-scale-test.md).
         const Mask retry = c.active && !full.converged && (hl * c.total >= 1.0e-12);
         c.h = simd::select(retry, 0.5 * hl, c.h);
         fail(c.active && !retry && full.model_failed, interface_failure::model);
         fail(c.active && !retry && full.singular, interface_failure::singular_newton);
         fail(c.active && !retry && !full.converged, interface_failure::newton);
         c.active = c.active && (full.converged || retry);
+    } else {
+        fail(c.active && full.model_failed, interface_failure::model);
+        fail(c.active && full.singular, interface_failure::singular_newton);
+        fail(c.active && !full.converged, interface_failure::newton);
+        c.active = c.active && full.converged;
     }
     // Eq. 26 within the increment: a sub-increment that takes d_s below its floor ends the
     // lane (band collapse) unless the floor is to be held.
