@@ -12,6 +12,7 @@
 #include "io/cli/kernel_bench.hpp"
 #include "io/cli/run_command.hpp"
 #include "io/output/summary_writer.hpp"
+#include "io/sweep/sweep_command.hpp"
 
 namespace ifsim::io {
 
@@ -19,6 +20,7 @@ namespace {
 
 constexpr const char* app_footer = R"(
   ifsim run SCENE.toml --out DIR [--set KEY=VALUE]... [--threads N] [--scalar]
+  ifsim sweep SWEEP.toml --out DIR [--jobs N] [--threads-per-run T] [--list]
   ifsim kernel-bench --model MODEL [--formulation F] --points N [--threads T] [--scalar]
                      [--seconds S] [--jacobian J] [--subincrement fixed|adaptive]
 Scene kinds: element-test (one material point), interface-test (simple interface shear:
@@ -38,6 +40,23 @@ Outputs in DIR: history.csv (one row per step or, for boundary-value scenes, per
 increment; row 0 = initial state) and, last,
 summary.json (status, timing, counters), written atomically.
 Exit codes: 0 ok, 1 output could not be written, 2 bad command line or scene, 3 run failed.)";
+
+constexpr const char* sweep_footer = R"(
+A sweep file names a base scene and lists of values for scene keys (the --set keys):
+  scene = "simple-shear-cnl-stutz.toml"   # or a list of scenes; relative to the sweep file
+  [grid]                                  # every combination, the last key fastest
+  "interface.roughness" = [0.8, 0.9, 1.0]
+  "interface.shear_band_thickness" = [0.002, 0.003]
+  [zip]                                   # optional: the n-th values together
+  [set]                                   # optional: overrides for every run
+  "interface.subincrement" = "adaptive"
+Each run is `ifsim run` into DIR/runs/<id>/ (id = hash of the scene file's text and the
+overrides; its console output in run.log). DIR/sweep.csv: one row per run in sweep order
+(swept values, status, reason, wall_s, the summary's results and counters); DIR/sweep.json:
+counts and status. Running the same command again skips runs whose summary says ok and redoes
+failed or killed ones. Exit codes: 0 all ok, 2 bad sweep file, 3 a run failed, 1 DIR not
+writable, 128+N stopped by signal N (the table is then sweep.csv.partial).
+Overlay plot of all runs: scripts/plot_results.py --sweep DIR. Docs: docs/sweeps.md.)";
 
 constexpr const char* bench_footer = R"(
 Prints one JSON object: model, formulation, points, threads, path (simd | scalar),
@@ -124,6 +143,26 @@ int run_cli(int argc, const char* const* argv) {
                        "and the kernel path it started with; rows after the checkpoint are "
                        "written again, so history.csv ends as the uninterrupted run's.");
 
+    SweepOptions sweep;
+    CLI::App* sweep_cmd = app.add_subcommand(
+        "sweep", "Run a scene over a grid of key values, a queue over the cores (sweep.csv)");
+    sweep_cmd->add_option("sweep", sweep.sweep_file, "Sweep file (TOML)")->required();
+    auto* sweep_out =
+        sweep_cmd->add_option("--out,-o", sweep.out, "Output directory (created if missing)");
+    sweep_cmd->add_option("--jobs,-j", sweep.jobs, "Runs at a time (default: one per core)")
+        ->check(CLI::Range(1, 4096));
+    sweep_cmd
+        ->add_option("--threads-per-run", sweep.threads_per_run,
+                     "Worker threads of each run (default: the cores shared out between the "
+                     "runs at a time)")
+        ->check(CLI::Range(1, 4096));
+    sweep_cmd->add_flag("--scalar", sweep.scalar, "Every run on the scalar kernel path");
+    sweep_cmd->add_flag("--quiet,-q", sweep.quiet, "No line per finished run");
+    auto* sweep_list = sweep_cmd->add_flag(
+        "--list", sweep.list, "Print the runs (number, id, scene, overrides); run nothing");
+    sweep_out->excludes(sweep_list);
+    sweep_cmd->footer(sweep_footer);
+
     KernelBenchOptions bench;
     CLI::App* bench_cmd = app.add_subcommand(
         "kernel-bench", "Time batched constitutive updates of N varied points (prints JSON)");
@@ -200,6 +239,13 @@ int run_cli(int argc, const char* const* argv) {
             resume.progress = ProgressMode::always;
         }
         return run_command(resume);
+    }
+    if (sweep_cmd->parsed()) {
+        if (sweep.out.empty() && !sweep.list) {
+            fmt::print(stderr, "ifsim sweep: error: --out DIR is required (or --list)\n");
+            return exit_code::bad_input;
+        }
+        return sweep_command(sweep);
     }
     if (run_cmd->parsed()) {
         if (progress) {

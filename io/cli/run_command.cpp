@@ -27,6 +27,7 @@
 #include "io/output/admissibility_warnings.hpp"
 #include "io/output/atomic_file.hpp"
 #include "io/output/column_units.hpp"
+#include "io/output/history_results.hpp"
 #include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
 #include "io/output/run_folder.hpp"
@@ -454,6 +455,9 @@ int run_command(const RunOptions& opt) {
     try {
         run_kind(scene, table, opt, dir, parse_s, checkpoints, checkpoint ? &*checkpoint : nullptr,
                  summary, written, label, steps);
+        if (auto results = history_results(dir / HistoryWriter::file_name); !results.empty()) {
+            summary.details["results"] = std::move(results);
+        }
         if (summary.details.contains("effects")) {
             summary.details["effects"]["checkpoints"] = checkpoints.enabled();
         }

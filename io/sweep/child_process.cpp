@@ -1,0 +1,73 @@
+#include "io/sweep/child_process.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+extern char** environ;
+
+namespace ifsim::io {
+
+namespace fs = std::filesystem;
+
+fs::path own_executable() {
+    std::error_code ec;
+    const fs::path p = fs::read_symlink("/proc/self/exe", ec);
+    if (ec) {
+        throw std::runtime_error(
+            fmt::format("cannot find the ifsim executable (/proc/self/exe): {}", ec.message()));
+    }
+    return p;
+}
+
+pid_t start_process(const std::vector<std::string>& argv, const fs::path& log) {
+    std::vector<char*> args;
+    for (const std::string& a : argv) {
+        args.push_back(const_cast<char*>(a.c_str()));
+    }
+    args.push_back(nullptr);
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        throw std::runtime_error(
+            fmt::format("cannot write {}: {}", log.string(), std::strerror(errno)));
+    }
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, fd, STDOUT_FILENO);
+    posix_spawn_file_actions_adddup2(&actions, fd, STDERR_FILENO);
+    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    pid_t pid = 0;
+    const int rc = posix_spawn(&pid, argv.front().c_str(), &actions, nullptr, args.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    ::close(fd);
+    if (rc != 0) {
+        throw std::runtime_error(
+            fmt::format("cannot start {}: {}", argv.front(), std::strerror(rc)));
+    }
+    return pid;
+}
+
+std::optional<ProcessEnd> finished_child() {
+    int status = 0;
+    const pid_t pid = ::waitpid(-1, &status, WNOHANG);
+    if (pid <= 0) {
+        return std::nullopt;
+    }
+    ProcessEnd end;
+    end.pid = pid;
+    if (WIFEXITED(status)) {
+        end.exit_code = WEXITSTATUS(status);
+    } else if (WIFSIGNALED(status)) {
+        end.signal = WTERMSIG(status);
+    }
+    return end;
+}
+
+} // namespace ifsim::io

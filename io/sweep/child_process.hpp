@@ -1,0 +1,30 @@
+#pragma once
+// Runs of a sweep as child processes (`ifsim run ...`): a run that crashes or is killed takes
+// only itself down, and each run has its own thread limit and signal handling.
+
+#include <sys/types.h>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ifsim::io {
+
+// The path of the running executable (/proc/self/exe).
+std::filesystem::path own_executable();
+
+// Starts argv[0] with the arguments argv[1...], its stdout and stderr written to `log`
+// (created or truncated). Throws std::runtime_error naming the program or the log.
+pid_t start_process(const std::vector<std::string>& argv, const std::filesystem::path& log);
+
+struct ProcessEnd {
+    pid_t pid = 0;
+    int exit_code = -1; // when it exited
+    int signal = 0;     // when a signal ended it
+};
+
+// A child that has ended, if one has (does not block).
+std::optional<ProcessEnd> finished_child();
+
+} // namespace ifsim::io
