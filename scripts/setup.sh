@@ -10,6 +10,7 @@ packages=(g++ cmake ninja-build git pkg-config
           libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
           libgtest-dev libgmock-dev libbenchmark-dev
           zlib1g-dev
+          libopenmpi-dev openmpi-bin  # `mpirun -np N ifsim sweep` across ranks and machines
           python3 python3-matplotlib python3-meshio python3-vtk9  # field files read back in tests
           gmsh  # meshes of scripts/study_fe_meshes.py from scenes/meshes/*.geo
           clang libclang-rt-14-dev)  # the sanitize preset: ASan + UBSan builds and libFuzzer harnesses

@@ -56,7 +56,9 @@ overrides; its console output in run.log). DIR/sweep.csv: one row per run in swe
 counts and status. Running the same command again skips runs whose summary says ok and redoes
 failed or killed ones. Exit codes: 0 all ok, 2 bad sweep file, 3 a run failed, 1 DIR not
 writable, 128+N stopped by signal N (the table is then sweep.csv.partial).
-Overlay plot of all runs: scripts/plot_results.py --sweep DIR. Docs: docs/sweeps.md.)";
+Across ranks and machines: mpirun -np N ifsim sweep ... (Open MPI; --jobs is then per rank,
+DIR on a file system every rank sees). Overlay plot of all runs: scripts/plot_sweep.py DIR.
+Docs: docs/sweeps.md.)";
 
 constexpr const char* bench_footer = R"(
 Prints one JSON object: model, formulation, points, threads, path (simd | scalar),
@@ -149,7 +151,7 @@ int run_cli(int argc, const char* const* argv) {
     sweep_cmd->add_option("sweep", sweep.sweep_file, "Sweep file (TOML)")->required();
     auto* sweep_out =
         sweep_cmd->add_option("--out,-o", sweep.out, "Output directory (created if missing)");
-    sweep_cmd->add_option("--jobs,-j", sweep.jobs, "Runs at a time (default: one per core)")
+    sweep_cmd->add_option("--jobs,-j", sweep.jobs, "Runs at a time (default: one per core; under mpirun: per rank, default 1)")
         ->check(CLI::Range(1, 4096));
     sweep_cmd
         ->add_option("--threads-per-run", sweep.threads_per_run,

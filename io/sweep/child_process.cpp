@@ -54,10 +54,9 @@ pid_t start_process(const std::vector<std::string>& argv, const fs::path& log) {
     return pid;
 }
 
-std::optional<ProcessEnd> finished_child() {
+std::optional<ProcessEnd> child_ended(pid_t pid) {
     int status = 0;
-    const pid_t pid = ::waitpid(-1, &status, WNOHANG);
-    if (pid <= 0) {
+    if (::waitpid(pid, &status, WNOHANG) != pid) {
         return std::nullopt;
     }
     ProcessEnd end;

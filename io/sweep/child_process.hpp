@@ -24,7 +24,7 @@ struct ProcessEnd {
     int signal = 0;     // when a signal ended it
 };
 
-// A child that has ended, if one has (does not block).
-std::optional<ProcessEnd> finished_child();
+// How child `pid` ended, if it has (does not block; reaps it).
+std::optional<ProcessEnd> child_ended(pid_t pid);
 
 } // namespace ifsim::io

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -43,7 +44,13 @@ std::optional<RunRecord> read_run_record(const std::filesystem::path& run_dir) {
     if (!in) {
         return std::nullopt;
     }
-    const nlohmann::ordered_json s = nlohmann::ordered_json::parse(in, nullptr, false);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return run_record_from_text(text.str());
+}
+
+std::optional<RunRecord> run_record_from_text(const std::string& summary_text) {
+    const nlohmann::ordered_json s = nlohmann::ordered_json::parse(summary_text, nullptr, false);
     if (s.is_discarded() || !s.is_object() || !s.contains("status")) {
         return std::nullopt;
     }

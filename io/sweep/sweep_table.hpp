@@ -30,6 +30,9 @@ struct RunRecord {
 // (never run, or killed before it wrote one).
 std::optional<RunRecord> read_run_record(const std::filesystem::path& run_dir);
 
+// The record of a summary.json's text (nullopt when it is not a run summary).
+std::optional<RunRecord> run_record_from_text(const std::string& summary_text);
+
 // A failed record for a run that left no summary: `reason` says how it ended.
 RunRecord failed_record(std::string reason);
 

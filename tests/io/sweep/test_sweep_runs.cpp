@@ -176,6 +176,24 @@ TEST(SweepRuns, AFailedMemberIsARowAndTheOthersRun) {
     EXPECT_EQ(json_of(out / "sweep.json")["status"], "failed");
 }
 
+TEST(SweepRuns, TheSameRunTwiceRunsOnce) {
+    // Two entries of one scene: the same ids, one run each, both rows filled.
+    const fs::path dir = write_sweep("").parent_path();
+    std::ofstream(dir / "sweep.toml")
+        << "scene = [\"base.toml\", \"base.toml\"]\n[grid]\n\"initial.void_ratio\" = [0.7]\n";
+    const fs::path out = test::fresh_dir("sweep-twice");
+    ASSERT_EQ(sweep(dir / "sweep.toml", out, 2), exit_code::ok);
+    const auto rows = csv(out / "sweep.csv");
+    ASSERT_EQ(rows.size(), 3u);
+    EXPECT_EQ(rows[1][1], rows[2][1]);
+    EXPECT_EQ(rows[1], [&] {
+        auto r = rows[2];
+        r[0] = "1";
+        return r;
+    }());
+    EXPECT_EQ(std::distance(fs::directory_iterator(out / "runs"), fs::directory_iterator{}), 1);
+}
+
 TEST(SweepRuns, ABadSweepFileRunsNothing) {
     const fs::path file = write_sweep("[grid]\n\"initial.void_ratio\" = []\n");
     const fs::path out = test::fresh_dir("sweep-bad") / "out";
