@@ -1,6 +1,9 @@
 # Warnings, instruction set and sanitizers for every ifsim target (through ifsim_options).
 add_library(ifsim_options INTERFACE)
 target_compile_options(ifsim_options INTERFACE -Wall -Wextra -Wpedantic)
+# Position-independent code (for the Python module) keeps calls between our own functions
+# inlinable: no symbol interposition is relied on.
+target_compile_options(ifsim_options INTERFACE $<$<CXX_COMPILER_ID:GNU>:-fno-semantic-interposition>)
 if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
   # GCC 12's own AVX-512 intrinsic headers trip -Wuninitialized through _mm512_undefined_*()
   # when inlined into xsimd's pow/log (GCC bug 105593, fixed in GCC 13). Not our code.

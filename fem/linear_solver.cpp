@@ -115,7 +115,8 @@ bool LinearSolver::factorise(const Eigen::SparseMatrix<double>& A, std::uint64_t
         const int st =
             umfpack_di_numeric(Ap, Ai, Ax, s.umf_symbolic, &s.umf_numeric, s.control, s.info);
         if (st == UMFPACK_WARNING_singular_matrix) {
-            error = "the tangent matrix is singular (UMFPACK)";
+            error = "the tangent matrix is singular (UMFPACK: a zero pivot): is every "
+                    "rigid-body motion prevented?";
             return false;
         }
         if (st != UMFPACK_OK) {
@@ -132,7 +133,8 @@ bool LinearSolver::factorise(const Eigen::SparseMatrix<double>& A, std::uint64_t
         s.klu_num = klu_factor(Ap, Ai, Ax, s.klu_sym, &s.common);
         if (!s.klu_num || s.common.status == KLU_SINGULAR) {
             error = s.common.status == KLU_SINGULAR
-                        ? std::string("the tangent matrix is singular (KLU)")
+                        ? std::string("the tangent matrix is singular (KLU: a zero pivot): is "
+                                      "every rigid-body motion prevented?")
                         : fmt::format("KLU factorisation failed (status {})", s.common.status);
             return false;
         }

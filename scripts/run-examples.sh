@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job: sets up and builds ifsim, runs every example scene under scenes/ into
-# results/<scene>/ and every sweep under sweeps/ into results/sweep-<name>/, and draws their
-# plots. Exits non-zero if any scene or sweep failed.
+# results/<scene>/, every sweep under sweeps/ into results/sweep-<name>/ and every calibration
+# under calibrations/ into results/calibration-<name>/, and draws their plots. Exits non-zero
+# if any of them failed.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh || exit 1
@@ -31,6 +32,16 @@ for sweep in sweeps/*.toml; do
         failed+=("$name")
     fi
     "$plot_python" scripts/plot_sweep.py "$out/$name"
+done
+
+for cal in calibrations/*.toml; do
+    name=calibration-$(basename "$cal" .toml)
+    echo "== $name"
+    rm -rf "${out:?}/$name"
+    if ! ./build/ifsim calibrate "$cal" --out "$out/$name"; then
+        failed+=("$name")
+    fi
+    "$plot_python" scripts/plot_calibration.py "$out/$name"
 done
 
 if ((${#failed[@]})); then

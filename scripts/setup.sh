@@ -11,6 +11,8 @@ packages=(g++ cmake ninja-build git pkg-config
           libgtest-dev libgmock-dev libbenchmark-dev
           zlib1g-dev
           libopenmpi-dev openmpi-bin  # `mpirun -np N ifsim sweep` across ranks and machines
+          libceres-dev  # `ifsim calibrate`: Levenberg-Marquardt within bounds
+          pybind11-dev python3-dev python3-numpy  # the Python module: import ifsim
           python3 python3-matplotlib python3-meshio python3-vtk9  # field files read back in tests
           gmsh  # meshes of scripts/study_fe_meshes.py from scenes/meshes/*.geo
           clang libclang-rt-14-dev)  # the sanitize preset: ASan + UBSan builds and libFuzzer harnesses

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "io/calibrate/calibrate_command.hpp"
 #include "io/cli/exit_codes.hpp"
 #include "io/cli/kernel_bench.hpp"
 #include "io/cli/run_command.hpp"
@@ -21,6 +22,7 @@ namespace {
 constexpr const char* app_footer = R"(
   ifsim run SCENE.toml --out DIR [--set KEY=VALUE]... [--threads N] [--scalar]
   ifsim sweep SWEEP.toml --out DIR [--jobs N] [--threads-per-run T] [--list]
+  ifsim calibrate CAL.toml --out DIR [--jobs N]
   ifsim kernel-bench --model MODEL [--formulation F] --points N [--threads T] [--scalar]
                      [--seconds S] [--jacobian J] [--subincrement fixed|adaptive]
 Scene kinds: element-test (one material point), interface-test (simple interface shear:
@@ -59,6 +61,22 @@ writable, 128+N stopped by signal N (the table is then sweep.csv.partial).
 Across ranks and machines: mpirun -np N ifsim sweep ... (Open MPI; --jobs is then per rank,
 DIR on a file system every rank sees). Overlay plot of all runs: scripts/plot_sweep.py DIR.
 Docs: docs/sweeps.md.)";
+
+constexpr const char* calibrate_footer = R"(
+A calibration file names a scene, a measured curve and the keys to fit:
+  scene = "../scenes/simple-shear-cnl-stutz.toml"   # relative to the calibration file
+  data = "measured.csv"        # CSV with columns u_t (m), t_t (kPa) and optionally u_n (m)
+  [parameters]
+  "interface.roughness" = { initial = 0.8, bounds = [0.5, 0.95] }
+  "interface.shear_band_thickness" = { initial = 0.002, bounds = [0.001, 0.006] }
+  [set]                        # optional: overrides of every run
+  [fit]                        # optional: weight_u_n = 1.0, max_iterations = 30, step = 0.01
+  [columns]                    # optional: the data file's column names (u_t, t_t, u_n)
+Least squares (Ceres Solver, Levenberg-Marquardt within the bounds) of (run - data) / scale at
+every data point, run and data compared at equal path length of u_t. Each Jacobian is n + 1
+runs at once over the cores (and MPI ranks under mpirun). Outputs in DIR: calibration.json
+(fitted values, cost, rms residuals, convergence), fit.csv, evaluations.csv, runs/<id>/.
+Plot: scripts/plot_calibration.py DIR. Docs: docs/calibration.md.)";
 
 constexpr const char* bench_footer = R"(
 Prints one JSON object: model, formulation, points, threads, path (simd | scalar),
@@ -151,7 +169,9 @@ int run_cli(int argc, const char* const* argv) {
     sweep_cmd->add_option("sweep", sweep.sweep_file, "Sweep file (TOML)")->required();
     auto* sweep_out =
         sweep_cmd->add_option("--out,-o", sweep.out, "Output directory (created if missing)");
-    sweep_cmd->add_option("--jobs,-j", sweep.jobs, "Runs at a time (default: one per core; under mpirun: per rank, default 1)")
+    sweep_cmd
+        ->add_option("--jobs,-j", sweep.jobs,
+                     "Runs at a time (default: one per core; under mpirun: per rank, default 1)")
         ->check(CLI::Range(1, 4096));
     sweep_cmd
         ->add_option("--threads-per-run", sweep.threads_per_run,
@@ -164,6 +184,23 @@ int run_cli(int argc, const char* const* argv) {
         "--list", sweep.list, "Print the runs (number, id, scene, overrides); run nothing");
     sweep_out->excludes(sweep_list);
     sweep_cmd->footer(sweep_footer);
+
+    CalibrateOptions calibrate;
+    CLI::App* calibrate_cmd = app.add_subcommand(
+        "calibrate", "Fit scene keys (roughness, band thickness, ...) to a measured curve");
+    calibrate_cmd->add_option("calibration", calibrate.file, "Calibration file (TOML)")->required();
+    calibrate_cmd->add_option("--out,-o", calibrate.runs.out, "Output directory")->required();
+    calibrate_cmd
+        ->add_option("--jobs,-j", calibrate.runs.jobs,
+                     "Runs at a time (default: one per core; under mpirun: per rank, default 1)")
+        ->check(CLI::Range(1, 4096));
+    calibrate_cmd
+        ->add_option("--threads-per-run", calibrate.runs.threads_per_run,
+                     "Worker threads of each run (default: the cores shared out)")
+        ->check(CLI::Range(1, 4096));
+    calibrate_cmd->add_flag("--scalar", calibrate.runs.scalar, "Every run on the scalar path");
+    calibrate_cmd->add_flag("--quiet,-q", calibrate.runs.quiet, "No line per iteration");
+    calibrate_cmd->footer(calibrate_footer);
 
     KernelBenchOptions bench;
     CLI::App* bench_cmd = app.add_subcommand(
@@ -241,6 +278,9 @@ int run_cli(int argc, const char* const* argv) {
             resume.progress = ProgressMode::always;
         }
         return run_command(resume);
+    }
+    if (calibrate_cmd->parsed()) {
+        return calibrate_command(calibrate);
     }
     if (sweep_cmd->parsed()) {
         if (sweep.out.empty() && !sweep.list) {

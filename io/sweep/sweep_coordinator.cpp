@@ -63,9 +63,10 @@ private:
     Clock::time_point t0_ = Clock::now();
 };
 
-// Runs the pending members. Returns the stop signal that ended the sweep early, or 0.
-int run_queue(SweepPlan& plan, const std::vector<std::size_t>& pending, const SweepLayout& layout,
-              const SweepOptions& opt, RemoteWorkers* remote) {
+} // namespace
+
+int run_members(SweepPlan& plan, const std::vector<std::size_t>& pending, const SweepLayout& layout,
+                const SweepOptions& opt, RemoteWorkers* remote) {
     RunPool pool(layout.local_jobs);
     RunLines lines(opt, pending.size(),
                    layout.local_jobs + (remote != nullptr ? remote->slots() : 0));
@@ -110,11 +111,10 @@ int run_queue(SweepPlan& plan, const std::vector<std::size_t>& pending, const Sw
             std::this_thread::sleep_for(std::chrono::milliseconds(10));
         }
     }
-    if (remote != nullptr) {
-        remote->finish();
-    }
     return stopped;
 }
+
+namespace {
 
 nlohmann::ordered_json sweep_json(const SweepPlan& plan, const SweepOptions& opt,
                                   const SweepLayout& layout, int slots, std::size_t reused,
@@ -197,7 +197,7 @@ int coordinate_sweep(const SweepOptions& opt, SweepPlan& plan,
     int stopped = 0;
     try {
         const StopSignals signals;
-        stopped = run_queue(plan, pending, layout, opt, remote);
+        stopped = run_members(plan, pending, layout, opt, remote);
     } catch (const std::exception& e) {
         fmt::print(stderr, "ifsim sweep: error: {}\n", e.what());
         return exit_code::io_error;

@@ -20,6 +20,12 @@ struct SweepLayout {
 // The default layout of a local sweep with `pending` runs (options --jobs, --threads-per-run).
 SweepLayout local_layout(std::size_t pending, const SweepOptions& options);
 
+// Runs the members `pending` of the plan (their records filled in as they end; a line per run
+// unless options.quiet) over the local pool and the remote workers. Returns the stop signal that
+// ended it early, or 0. Call it with StopSignals installed.
+int run_members(SweepPlan& plan, const std::vector<std::size_t>& pending, const SweepLayout& layout,
+                const SweepOptions& options, RemoteWorkers* remote);
+
 int coordinate_sweep(const SweepOptions& options, SweepPlan& plan,
                      const std::vector<std::size_t>& pending, std::size_t reused,
                      const SweepLayout& layout, RemoteWorkers* remote);
