@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <thread>
 
 #include <ceres/ceres.h>
@@ -53,38 +54,60 @@ public:
                   double** jacobians) const override {
         const std::size_t n = cal_.parameters.size();
         const double* x = parameters[0];
+        const bool jacobian = jacobians != nullptr && jacobians[0] != nullptr;
         std::vector<std::vector<double>> points = {values_of(cal_, x)};
         std::vector<double> steps;
-        const bool jacobian = jacobians != nullptr && jacobians[0] != nullptr;
         if (jacobian) {
             for (std::size_t k = 0; k < n; ++k) {
-                std::vector<double> xk(x, x + n);
-                const double h = xk[k] + cal_.step <= 1.0 ? cal_.step : -cal_.step;
-                xk[k] += h;
-                steps.push_back(h);
-                points.push_back(values_of(cal_, xk.data()));
+                steps.push_back(x[k] + cal_.step <= 1.0 ? cal_.step : -cal_.step);
+                points.push_back(neighbour(x, k, steps[k]));
             }
         }
-        const auto r = evaluator_.evaluate(points);
+        auto r = evaluator_.evaluate(points);
         if (!r[0]) {
-            return false; // Ceres shrinks the step
+            return false; // a trial point: Ceres shrinks the step
         }
         const std::size_t m = r[0]->size();
         std::copy(r[0]->begin(), r[0]->end(), residuals);
-        if (jacobian) {
-            for (std::size_t k = 0; k < n; ++k) {
-                if (!r[k + 1]) {
-                    return false;
-                }
-                for (std::size_t i = 0; i < m; ++i) {
-                    jacobians[0][i * n + k] = ((*r[k + 1])[i] - (*r[0])[i]) / steps[k];
-                }
+        if (!jacobian) {
+            return true;
+        }
+        // A neighbour whose run failed is tried on the other side of x (a failed Jacobian at
+        // an accepted point would end the fit).
+        std::vector<std::vector<double>> retry;
+        std::vector<std::size_t> which;
+        for (std::size_t k = 0; k < n; ++k) {
+            const double other = -steps[k];
+            if (!r[k + 1] && x[k] + other >= 0.0 && x[k] + other <= 1.0) {
+                steps[k] = other;
+                retry.push_back(neighbour(x, k, other));
+                which.push_back(k);
+            }
+        }
+        if (!retry.empty()) {
+            auto again = evaluator_.evaluate(retry);
+            for (std::size_t j = 0; j < which.size(); ++j) {
+                r[which[j] + 1] = std::move(again[j]);
+            }
+        }
+        for (std::size_t k = 0; k < n; ++k) {
+            if (!r[k + 1]) {
+                return false;
+            }
+            for (std::size_t i = 0; i < m; ++i) {
+                jacobians[0][i * n + k] = ((*r[k + 1])[i] - (*r[0])[i]) / steps[k];
             }
         }
         return true;
     }
 
 private:
+    std::vector<double> neighbour(const double* x, std::size_t k, double h) const {
+        std::vector<double> xk(x, x + cal_.parameters.size());
+        xk[k] += h;
+        return values_of(cal_, xk.data());
+    }
+
     CurveEvaluator& evaluator_;
     const CalibrationFile& cal_;
 };
@@ -198,9 +221,11 @@ int calibrate(const CalibrateOptions& opt, const SweepLayout& layout, RemoteWork
     options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
     options.linear_solver_type = ceres::DENSE_QR;
     options.max_num_iterations = cal.max_iterations;
-    options.function_tolerance = 1e-10;
+    // The runs are smooth in the keys only to their own tolerances (adaptive sub-increments
+    // give cost noise of ~1e-3 relative): tighter stops only collect rejected steps.
+    options.function_tolerance = 1e-8;
     options.gradient_tolerance = 1e-12;
-    options.parameter_tolerance = 1e-8;
+    options.parameter_tolerance = 1e-6;
     options.num_threads = 1; // the runs use the cores
     options.logging_type = ceres::SILENT;
     options.update_state_every_iteration = true;
@@ -210,25 +235,28 @@ int calibrate(const CalibrateOptions& opt, const SweepLayout& layout, RemoteWork
     const StopSignals signals;
     ceres::Solve(options, &problem, &summary);
     const int stopped = evaluator.interrupted() != 0 ? evaluator.interrupted() : stop_signal();
-    if (stopped == 0 && summary.termination_type == ceres::FAILURE) {
-        // Ceres could not evaluate the start: say which run failed and why.
-        std::string why = summary.message;
-        for (const Evaluation& e : evaluator.evaluations()) {
-            if (!e.ok) {
-                why = fmt::format("the run at the initial values ({}) failed: {}",
-                                  (out / "runs" / e.id).string(), e.reason);
-                break;
-            }
-        }
+    const bool failed = stopped == 0 && summary.termination_type == ceres::FAILURE;
+    const std::vector<Evaluation>& evals = evaluator.evaluations();
+    if (failed && (evals.empty() || !evals.front().ok)) {
+        // The start itself could not be evaluated: nothing was fitted.
+        const std::string why =
+            evals.empty()
+                ? summary.message
+                : fmt::format("the run at the initial values ({}) failed: {}",
+                              (out / "runs" / evals.front().id).string(), evals.front().reason);
         fmt::print(stderr, "ifsim calibrate: error: {}\n", why);
-        write_file_atomically(out / "evaluations.csv",
-                              evaluations_csv(cal, evaluator.evaluations()));
+        try {
+            write_file_atomically(out / "evaluations.csv", evaluations_csv(cal, evals));
+        } catch (const std::exception&) {
+        }
         return exit_code::run_failed;
     }
     const std::vector<double> fitted = values_of(cal, x.data());
     nlohmann::ordered_json j;
     j["calibration"] = opt.file;
-    j["status"] = stopped != 0 ? "interrupted" : "ok";
+    // failed: Ceres stopped on an evaluation it could not do (a Jacobian whose runs failed on
+    // both sides); the values are the last accepted point's.
+    j["status"] = stopped != 0 ? "interrupted" : failed ? "failed" : "ok";
     j["converged"] = summary.termination_type == ceres::CONVERGENCE;
     j["termination"] = summary.message;
     j["iterations"] = summary.iterations.empty() ? 0 : summary.iterations.back().iteration;
@@ -251,10 +279,11 @@ int calibrate(const CalibrateOptions& opt, const SweepLayout& layout, RemoteWork
                           {"at_bound", x[k] <= 1e-9 || x[k] >= 1.0 - 1e-9}});
     }
     j["parameters"] = params;
-    // The fitted point's run (evaluated by the last successful step).
+    // The fitted point's run: the last accepted point, evaluated when it was accepted.
     const fs::path best = evaluator.run_dir(fitted);
     std::string csv;
-    try {
+    const std::optional<RunRecord> best_record = read_run_record(best);
+    if (best_record && best_record->ok) {
         const CurvePoints fit = run_at_data_points(data, read_run_curve(best / "history.csv"));
         j["rms_t_t"] = rms(fit.t_t, data.t_t);
         if (!data.u_n.empty()) {
@@ -262,9 +291,8 @@ int calibrate(const CalibrateOptions& opt, const SweepLayout& layout, RemoteWork
         }
         j["run"] = fs::relative(best, out).string();
         csv = fit_csv(data, fit);
-    } catch (const std::exception& e) {
-        j["run"] = nullptr;
-        j["run_error"] = e.what();
+    } else {
+        j["run"] = nullptr; // interrupted before the start's run ended
     }
     j["data"] = cal.data_path.string();
     j["data_points"] = data.t_t.size();
@@ -294,6 +322,13 @@ int calibrate(const CalibrateOptions& opt, const SweepLayout& layout, RemoteWork
                    signal_name(stopped));
         return interrupted_exit_code(stopped);
     }
+    if (failed) {
+        fmt::print(stderr,
+                   "ifsim calibrate: stopped: {}; calibration.json holds the last "
+                   "accepted point\n",
+                   summary.message);
+        return exit_code::run_failed;
+    }
     if (!opt.runs.quiet) {
         std::string values;
         for (std::size_t k = 0; k < n; ++k) {
@@ -316,9 +351,14 @@ int calibrate_command(const CalibrateOptions& opt) {
             return calibrate(opt, layout, &workers);
         });
     }
-    // Local: a batch holds the point and its n neighbours, so n + 1 runs at a time.
-    const SweepLayout layout = local_layout(1024, opt.runs);
-    return calibrate(opt, layout, nullptr);
+    // Local: a batch holds the point and its n neighbours, so n + 1 runs at a time. The number
+    // of keys is known once the file is read; a bad file is reported by calibrate().
+    std::size_t keys = 1;
+    try {
+        keys = read_calibration_file(opt.file).parameters.size();
+    } catch (const std::exception&) {
+    }
+    return calibrate(opt, local_layout(keys + 1, opt.runs), nullptr);
 }
 
 } // namespace ifsim::io

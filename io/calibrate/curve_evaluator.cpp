@@ -73,7 +73,7 @@ CurveEvaluator::evaluate(const std::vector<std::vector<double>>& points) {
             }
             return false;
         }();
-        if (earlier && earlier->ok) {
+        if (reusable(earlier, runs_.scalar)) {
             reused[p] = true;
             plan_.records.push_back(std::move(earlier));
         } else {

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <stdexcept>
 
@@ -43,8 +44,16 @@ pid_t start_process(const std::vector<std::string>& argv, const fs::path& log) {
     posix_spawn_file_actions_adddup2(&actions, fd, STDOUT_FILENO);
     posix_spawn_file_actions_adddup2(&actions, fd, STDERR_FILENO);
     posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    // Its own process group: a Ctrl-C at the terminal or a kill of the sweep's group reaches
+    // the sweep alone, which passes the stop on once (RunPool::stop_all).
+    posix_spawnattr_t attributes;
+    posix_spawnattr_init(&attributes);
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&attributes, 0);
     pid_t pid = 0;
-    const int rc = posix_spawn(&pid, argv.front().c_str(), &actions, nullptr, args.data(), environ);
+    const int rc =
+        posix_spawn(&pid, argv.front().c_str(), &actions, &attributes, args.data(), environ);
+    posix_spawnattr_destroy(&attributes);
     posix_spawn_file_actions_destroy(&actions);
     ::close(fd);
     if (rc != 0) {
@@ -54,9 +63,17 @@ pid_t start_process(const std::vector<std::string>& argv, const fs::path& log) {
     return pid;
 }
 
+void reap_own_children() {
+    ::signal(SIGCHLD, SIG_DFL); // inherited SIG_IGN would reap them before waitpid sees them
+}
+
 std::optional<ProcessEnd> child_ended(pid_t pid) {
     int status = 0;
-    if (::waitpid(pid, &status, WNOHANG) != pid) {
+    const pid_t got = ::waitpid(pid, &status, WNOHANG);
+    if (got == -1 && errno == ECHILD) {
+        return ProcessEnd{pid, -1, 0}; // gone without a status: counted as ended
+    }
+    if (got != pid) {
         return std::nullopt;
     }
     ProcessEnd end;

@@ -1,6 +1,7 @@
 #pragma once
 // Runs of a sweep as child processes (`ifsim run ...`): a run that crashes or is killed takes
-// only itself down, and each run has its own thread limit and signal handling.
+// only itself down, and each run has its own thread limit and signal handling. Each child is
+// the leader of its own process group.
 
 #include <sys/types.h>
 
@@ -23,6 +24,10 @@ struct ProcessEnd {
     int exit_code = -1; // when it exited
     int signal = 0;     // when a signal ended it
 };
+
+// Lets waitpid see our children's ends (SIGCHLD to its default; an inherited SIG_IGN would
+// reap them unseen). Called before the first run starts.
+void reap_own_children();
 
 // How child `pid` ended, if it has (does not block; reaps it).
 std::optional<ProcessEnd> child_ended(pid_t pid);

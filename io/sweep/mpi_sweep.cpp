@@ -211,6 +211,10 @@ int serve_runs(int local_jobs) {
         MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
         if (flag && st.MPI_TAG == work_tag) {
             const Work w = receive_work(st);
+            if (stopping) { // stopped before it could start: reported as not run
+                send_done(RunPool::Ended{w.token, ProcessEnd{0, -1, -1}, 0.0}, "");
+                continue;
+            }
             try {
                 std::filesystem::create_directories(w.run_dir);
                 pool.start(w.token, w.argv, w.run_dir / "run.log");
@@ -259,6 +263,13 @@ int run_on_mpi_ranks(const SweepOptions& opt,
         code = coordinate(layout, workers);
     } catch (const std::exception& e) {
         fmt::print(stderr, "ifsim: error: {}\n", e.what());
+    }
+    // Every run handed out is reported before STOP (a report sent after rank 0 finalised would
+    // never be received and could block its worker).
+    while (workers.outstanding() > 0) {
+        if (!workers.poll()) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
     }
     workers.finish(); // the workers end whatever rank 0 ended with
     return code;

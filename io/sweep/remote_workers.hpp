@@ -15,7 +15,7 @@ namespace ifsim::io {
 
 struct RemoteEnd {
     std::size_t member = 0; // the token given to start()
-    ProcessEnd end;
+    ProcessEnd end;         // end.signal < 0: the worker was stopping and did not start the run
     double wall_s = 0.0;
     std::string summary_text; // the run's summary.json ("" when it left none)
     int rank = 0;

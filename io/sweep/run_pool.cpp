@@ -5,6 +5,10 @@
 
 namespace ifsim::io {
 
+RunPool::RunPool(int capacity) : capacity_(capacity) {
+    reap_own_children();
+}
+
 RunPool::~RunPool() {
     stop_all();
     for (const auto& [pid, run] : running_) {
@@ -33,8 +37,11 @@ std::optional<RunPool::Ended> RunPool::poll() {
 }
 
 void RunPool::stop_all() {
+    // SIGHUP: each run ends as on any stop signal (summary "interrupted", rows kept). Not the
+    // sweep's own signal: a batch system's SIGTERM may reach the runs directly as well, and a
+    // second signal of one kind ends a run at once, without its summary.
     for (const auto& [pid, run] : running_) {
-        ::kill(pid, SIGTERM);
+        ::kill(pid, SIGHUP);
     }
 }
 

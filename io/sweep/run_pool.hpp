@@ -18,7 +18,7 @@ namespace ifsim::io {
 
 class RunPool {
 public:
-    explicit RunPool(int capacity) : capacity_(capacity) {}
+    explicit RunPool(int capacity);
     ~RunPool(); // stops and waits for runs still going (an error path)
     RunPool(const RunPool&) = delete;
     RunPool& operator=(const RunPool&) = delete;
@@ -40,7 +40,7 @@ public:
     // A run that has ended, if one has (does not block).
     std::optional<Ended> poll();
 
-    // SIGTERM to every run going on: each writes its summary (interrupted) and ends.
+    // A stop (SIGHUP) to every run going on: each writes its summary (interrupted) and ends.
     void stop_all();
 
 private:

@@ -34,7 +34,7 @@ int sweep_command(const SweepOptions& opt) {
                 return exit_code::bad_input;
             }
             std::size_t reused = 0;
-            const std::vector<std::size_t> pending = pending_members(*plan, reused);
+            const std::vector<std::size_t> pending = pending_members(*plan, opt.scalar, reused);
             return coordinate_sweep(opt, *plan, pending, reused, layout, &workers);
         });
     }
@@ -54,7 +54,7 @@ int sweep_command(const SweepOptions& opt) {
         return exit_code::ok;
     }
     std::size_t reused = 0;
-    const std::vector<std::size_t> pending = pending_members(plan, reused);
+    const std::vector<std::size_t> pending = pending_members(plan, opt.scalar, reused);
     return coordinate_sweep(opt, plan, pending, reused, local_layout(pending.size(), opt), nullptr);
 }
 

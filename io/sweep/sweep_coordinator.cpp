@@ -63,6 +63,14 @@ private:
     Clock::time_point t0_ = Clock::now();
 };
 
+// A run that failed while the sweep was stopping was (most likely) stopped by it: not run, so
+// the table does not show it as a failure and the next command runs it again.
+void record_ended(SweepPlan& plan, std::size_t member, const RunRecord& r, int stopped) {
+    if (stopped == 0 || r.ok) {
+        set_record(plan, member, r);
+    }
+}
+
 } // namespace
 
 int run_members(SweepPlan& plan, const std::vector<std::size_t>& pending, const SweepLayout& layout,
@@ -94,15 +102,18 @@ int run_members(SweepPlan& plan, const std::vector<std::size_t>& pending, const 
         if (const auto end = pool.poll()) {
             const RunRecord r =
                 ended_run_record(plan, end->member, summary_text(plan, end->member), end->end);
-            set_record(plan, end->member, r);
+            record_ended(plan, end->member, r, stopped);
             lines.ended(plan, end->member, r, end->wall_s, show_rank, stopped != 0);
             busy = true;
         }
         if (remote != nullptr) {
             if (const auto end = remote->poll()) {
+                if (end->end.signal < 0) {
+                    continue; // the worker was stopping and did not start it: not run
+                }
                 const RunRecord r =
                     ended_run_record(plan, end->member, end->summary_text, end->end);
-                set_record(plan, end->member, r);
+                record_ended(plan, end->member, r, stopped);
                 lines.ended(plan, end->member, r, end->wall_s, end->rank, stopped != 0);
                 busy = true;
             }
@@ -111,7 +122,7 @@ int run_members(SweepPlan& plan, const std::vector<std::size_t>& pending, const 
             std::this_thread::sleep_for(std::chrono::milliseconds(10));
         }
     }
-    return stopped;
+    return stopped != 0 ? stopped : stop_signal(); // a signal during the last run's end
 }
 
 namespace {

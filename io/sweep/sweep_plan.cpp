@@ -22,13 +22,17 @@ SweepPlan plan_sweep(const SweepOptions& options) {
     return plan;
 }
 
-std::vector<std::size_t> pending_members(SweepPlan& plan, std::size_t& reused) {
+bool reusable(const std::optional<RunRecord>& earlier, bool scalar) {
+    return earlier && earlier->ok && earlier->path == (scalar ? "scalar" : "simd");
+}
+
+std::vector<std::size_t> pending_members(SweepPlan& plan, bool scalar, std::size_t& reused) {
     std::vector<std::size_t> pending;
     std::set<std::string> queued;
     reused = 0;
     for (std::size_t i = 0; i < plan.members.size(); ++i) {
         std::optional<RunRecord> earlier = read_run_record(plan.run_dir(plan.members[i]));
-        if (earlier && earlier->ok) {
+        if (reusable(earlier, scalar)) {
             plan.records[i] = std::move(earlier);
             ++reused;
         } else if (queued.insert(plan.members[i].id).second) {

@@ -28,9 +28,12 @@ struct SweepPlan {
 SweepPlan plan_sweep(const SweepOptions& options);
 
 // The members to run, one per id (the same scene with the same overrides twice is one run),
-// and the number of members whose folder already holds an "ok" summary (their records are
-// filled in).
-std::vector<std::size_t> pending_members(SweepPlan& plan, std::size_t& reused);
+// and the number of members whose folder already holds an "ok" summary of a run on the same
+// kernel path (their records are filled in).
+std::vector<std::size_t> pending_members(SweepPlan& plan, bool scalar, std::size_t& reused);
+
+// Whether an earlier run's record can stand for a run on this kernel path.
+bool reusable(const std::optional<RunRecord>& earlier, bool scalar);
 
 // Prepares the member's folder (created; an older attempt's summary removed) and returns the
 // command line of its run.

@@ -62,6 +62,9 @@ std::optional<RunRecord> run_record_from_text(const std::string& summary_text) {
     if (s.contains("timing") && s["timing"].contains("wall_s")) {
         r.wall_s = s["timing"]["wall_s"].get<double>();
     }
+    if (s.contains("path") && s["path"].is_string()) {
+        r.path = s["path"].get<std::string>();
+    }
     if (s.contains("results") && s["results"].is_object()) {
         r.results = s["results"];
     }

@@ -22,6 +22,7 @@ struct RunRecord {
     bool ok = false;
     std::string reason;
     double wall_s = 0.0;
+    std::string path; // "simd" | "scalar": the kernel path it ran on
     nlohmann::ordered_json results = nlohmann::ordered_json::object();
     nlohmann::ordered_json counters = nlohmann::ordered_json::object();
 };

@@ -17,6 +17,7 @@ import json
 import os
 import shutil
 import tempfile
+import threading
 
 import numpy as np
 
@@ -27,6 +28,10 @@ version = _ifsim.version
 revision = _ifsim.revision
 
 _EXIT_OK, _EXIT_IO, _EXIT_BAD_INPUT, _EXIT_RUN_FAILED = 0, 1, 2, 3
+_EXIT_SIGINT = 128 + 2
+# One run at a time in this process: a run installs process-wide signal handlers and sets the
+# process-wide thread count (threads in Python wait here; use `ifsim sweep` for many at once).
+_ONE_RUN = threading.Lock()
 
 
 class SceneError(ValueError):
@@ -117,6 +122,11 @@ def run(scene, out=None, set=None, threads=None, scalar=False, check=True, progr
         else:
             path = os.fspath(scene)
         folder = os.fspath(out) if out is not None else os.path.join(scratch, "run")
+        # An earlier run's summary in `out` must not be read as this run's (a run that stops on
+        # its command line writes none; --replace removes the earlier outputs otherwise).
+        stale = os.path.join(folder, "summary.json")
+        if os.path.exists(stale):
+            os.remove(stale)
         args = ["run", path, "--out", folder, "--replace"]
         for s in _overrides(set):
             args += ["--set", s]
@@ -125,7 +135,8 @@ def run(scene, out=None, set=None, threads=None, scalar=False, check=True, progr
         if scalar:
             args.append("--scalar")
         args.append("--progress" if progress else "--quiet")
-        code = _ifsim.run_cli(args)
+        with _ONE_RUN:
+            code = _ifsim.run_cli(args)
         summary = _read_summary(os.path.join(folder, "summary.json"))
         result = Result(_read_history(os.path.join(folder, "history.csv")), summary,
                         folder if out is not None else None)
@@ -136,9 +147,11 @@ def run(scene, out=None, set=None, threads=None, scalar=False, check=True, progr
         raise SceneError(reason.removeprefix("scene error: ") or
                          f"ifsim could not run {path} (bad command line or scene)")
     if code == _EXIT_IO:
-        raise OSError(reason or f"ifsim could not write its results to {folder}")
-    if code >= 128:
+        raise OSError(reason or f"ifsim could not run {path} or write its results to {folder}")
+    if code == _EXIT_SIGINT:
         raise KeyboardInterrupt(reason)
+    if code > 128:
+        raise RunFailed(reason or f"ifsim run stopped by signal {code - 128}", result)
     if code == _EXIT_RUN_FAILED and check:
         raise RunFailed(reason, result)
     return result
