@@ -31,20 +31,6 @@ fs::path existing_file(const TableReader& root, std::string_view key, const fs::
     return p;
 }
 
-std::vector<std::string> keys_in_file_order(const toml::table& table) {
-    std::vector<std::pair<std::string, int>> keys;
-    for (const auto& [k, v] : table) {
-        keys.emplace_back(std::string(k.str()), line_in_file(v));
-    }
-    std::stable_sort(keys.begin(), keys.end(),
-                     [](const auto& a, const auto& b) { return a.second < b.second; });
-    std::vector<std::string> out;
-    for (auto& k : keys) {
-        out.push_back(std::move(k.first));
-    }
-    return out;
-}
-
 FittedParameter read_parameter(const TableReader& parameters, const std::string& key) {
     const std::string full = fmt::format("parameters.\"{}\"", key);
     const toml::node* node = parameters.find(key);

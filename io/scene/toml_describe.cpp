@@ -1,5 +1,8 @@
 #include "io/scene/toml_describe.hpp"
 
+#include <algorithm>
+#include <limits>
+
 #include <fmt/format.h>
 
 #include "io/scene/scene_toml.hpp"
@@ -39,6 +42,21 @@ int line_in_file(const toml::node& node) {
         return 0;
     }
     return static_cast<int>(node.source().begin.line);
+}
+
+std::vector<std::string> keys_in_file_order(const toml::table& table) {
+    std::vector<std::pair<std::string, int>> keys;
+    for (const auto& [k, v] : table) {
+        const int line = line_in_file(v);
+        keys.emplace_back(std::string(k.str()), line > 0 ? line : std::numeric_limits<int>::max());
+    }
+    std::stable_sort(keys.begin(), keys.end(),
+                     [](const auto& a, const auto& b) { return a.second < b.second; });
+    std::vector<std::string> out;
+    for (auto& k : keys) {
+        out.push_back(std::move(k.first));
+    }
+    return out;
 }
 
 } // namespace ifsim::io

@@ -2,6 +2,7 @@
 // Words for TOML values in error messages ("got a string \"abc\"") and where they stand.
 
 #include <string>
+#include <vector>
 
 #include <toml++/toml.h>
 
@@ -15,5 +16,9 @@ int line_in_file(const toml::node& node);
 
 // True when the node's value came from a command-line override.
 bool from_override(const toml::node& node);
+
+// The keys of a table in the order they stand in the file (toml++ keeps them sorted); keys
+// without a line (from --set) last, in sorted order.
+std::vector<std::string> keys_in_file_order(const toml::table& table);
 
 } // namespace ifsim::io

@@ -66,21 +66,6 @@ std::string display_text(const toml::node& node) {
     return toml_value_text(node);
 }
 
-// The keys of a table in the order they stand in the file.
-std::vector<std::string> keys_in_file_order(const toml::table& table) {
-    std::vector<std::pair<std::string, int>> keys;
-    for (const auto& [k, v] : table) {
-        keys.emplace_back(std::string(k.str()), line_in_file(v));
-    }
-    std::stable_sort(keys.begin(), keys.end(),
-                     [](const auto& a, const auto& b) { return a.second < b.second; });
-    std::vector<std::string> out;
-    for (auto& k : keys) {
-        out.push_back(std::move(k.first));
-    }
-    return out;
-}
-
 // A key of [grid] or [zip]: a non-empty list of values.
 SweepAxis read_axis(const toml::table& section, const std::string& section_name,
                     const std::string& key, const std::string& file) {
