@@ -40,8 +40,9 @@ fs::path write_sweep(const std::string& body) {
     return dir / "sweep.toml";
 }
 
-int sweep(const fs::path& file, const fs::path& out, int jobs) {
+int sweep(const fs::path& file, const fs::path& out, int jobs, bool scalar = false) {
     SweepOptions opt;
+    opt.scalar = scalar;
     opt.sweep_file = file.string();
     opt.out = out.string();
     opt.jobs = jobs;
@@ -159,6 +160,22 @@ TEST(SweepRuns, RunningAgainRedoesOnlyUnfinishedRuns) {
     EXPECT_EQ(json_of(summary_of(1))["status"], "ok");
     EXPECT_EQ(json_of(summary_of(2))["status"], "ok");
     EXPECT_NE(test::read_text(summary_of(2)), before[2]) << "the failed run was not redone";
+}
+
+TEST(SweepRuns, RunsAreReusedOnlyOnTheKernelPathAskedFor) {
+    const fs::path file = write_sweep("[grid]\n\"initial.void_ratio\" = [0.7, 0.72]\n");
+    const fs::path out = test::fresh_dir("sweep-path");
+    ASSERT_EQ(sweep(file, out, 2), exit_code::ok);
+    ASSERT_EQ(sweep(file, out, 2, true), exit_code::ok);
+    auto summary = json_of(out / "sweep.json");
+    EXPECT_EQ(summary["reused"], 0) << "SIMD runs stood in for scalar ones";
+    EXPECT_EQ(summary["path"], "scalar");
+    const auto members = expand_sweep(read_sweep_file(file));
+    for (const auto& m : members) {
+        EXPECT_EQ(json_of(out / "runs" / m.id / "summary.json")["path"], "scalar");
+    }
+    ASSERT_EQ(sweep(file, out, 2, true), exit_code::ok);
+    EXPECT_EQ(json_of(out / "sweep.json")["reused"], 2);
 }
 
 TEST(SweepRuns, AFailedMemberIsARowAndTheOthersRun) {
