@@ -132,23 +132,40 @@ public:
                 detail::run_lanes_scalar<M>(mp, s, lanes_, {keys, n});
             }
         };
+        // A base lane held to equal sub-increments (contact_col::forced) that took exactly
+        // that many is its own reference re-run: same inputs, same discretisation, same
+        // settings, and a lane's bits do not depend on its batch. Such reference lanes are
+        // copied instead of run.
+        const bool same_settings = !(opt.interface.jacobian_tolerance > 0.0);
+        reference_copied_.assign(P, 0);
         for_chunks(P, chunk, [&](std::size_t b, std::size_t e) {
             const std::size_t m = e - b;
             // The chunk's lanes in order_[b blocks, e blocks): base lanes first (the perturbed
             // ones take their sub-increment counts), then every perturbed lane of the chunk as
             // one queue, so lanes of equal work from different blocks share batches.
             detail::LaneKey* keys = order_.data() + b * blocks;
-            for (int k = 0; k < blocks; ++k) {
-                for (std::size_t i = b; i < e; ++i) {
-                    keys[k * m + (i - b)].lane = k * P + i;
-                }
+            for (std::size_t i = b; i < e; ++i) {
+                keys[i - b].lane = i;
             }
             gather(cp, opt, P, 0, ndim, b, e);
             run(keys, m, opt.interface);
+            std::size_t queued = 0;
             for (int k = 1; k < blocks; ++k) {
+                for (std::size_t i = b; i < e; ++i) {
+                    if (k == ref && rerun && same_settings && base_is_reference(i)) {
+                        reference_copied_[i] = 1;
+                        continue;
+                    }
+                    keys[m + queued++].lane = k * P + i;
+                }
                 gather(cp, opt, P, k, ndim, b, e);
             }
-            run(keys + m, (blocks - 1) * m, lane_settings);
+            run(keys + m, queued, lane_settings);
+            for (std::size_t i = b; i < e; ++i) {
+                if (reference_copied_[i] != 0) {
+                    copy_base_to_reference(P, ref, i);
+                }
+            }
             scatter(cp, mp, opt, P, blocks, ref, b, e);
         });
 
@@ -172,6 +189,9 @@ public:
             rep.model_substeps += cp.output(contact_col::model_substeps)[i];
         }
         rep.lanes = static_cast<double>(cp.size()) * blocks;
+        for (std::size_t i = 0; i < cp.size(); ++i) {
+            rep.lanes -= reference_copied_[i];
+        }
         return rep;
     }
 
@@ -235,6 +255,24 @@ private:
                 lanes_.col(state + c)[l] = cp.committed(c)[i];
             }
         }
+    }
+
+    bool base_is_reference(std::size_t i) const {
+        using namespace detail::lane_col;
+        const double held = lanes_.col(forced)[i];
+        return held > 0.5 && lanes_.col(status)[i] > -0.5 && lanes_.col(subincrements)[i] == held;
+    }
+
+    // The reference lane takes the base lane's inputs, state and results; it did no work.
+    void copy_base_to_reference(std::size_t P, int ref, std::size_t i) {
+        using namespace detail::lane_col;
+        const std::size_t l = static_cast<std::size_t>(ref) * P + i;
+        for (int c = 0; c < lanes_.columns(); ++c) {
+            lanes_.col(c)[l] = lanes_.col(c)[i];
+        }
+        lanes_.col(evaluations)[l] = 0.0;
+        lanes_.col(msub)[l] = 0.0;
+        lanes_.col(newton)[l] = 0.0;
     }
 
     double lane_traction(std::size_t l, int comp) const {
@@ -402,7 +440,8 @@ private:
     }
 
     ColumnStore lanes_;
-    std::vector<detail::LaneKey> order_; // lane order per chunk, reused like lanes_
+    std::vector<detail::LaneKey> order_;          // lane order per chunk, reused like lanes_
+    std::vector<unsigned char> reference_copied_; // per point: reference lane copied, not run
 };
 
 } // namespace ifsim

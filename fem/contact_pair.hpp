@@ -59,6 +59,15 @@ struct ContactPairSpec {
     // results, 25 % fewer lanes in the shear-box scenes, but not faster: the base lanes are the
     // costly ones (bench_fe_shear_box: 2D 9-16 % slower, 3D 5-11 % faster), so off by default.
     bool defer_jacobian = false;
+    // Continuum with adaptive sub-increments: true holds each point's sub-increments, chosen by
+    // the error control in the increment's first evaluation, as that many equal ones through
+    // the Newton iterations that follow (chosen again where the slip grows past
+    // partition_regrowth times the one they were chosen for); false chooses them anew in every
+    // evaluation. Held, the residual is one smooth function of the displacement within an
+    // increment and the base lane takes one Algorithm 1 solve per sub-increment instead of
+    // the step doubling's three (docs/fem.md, "Sub-increments held through an increment").
+    bool hold_partition = true;
+    double partition_regrowth = 1.5;
 
     bool coulomb() const { return options.interface.formulation == InterfaceFormulation::coulomb; }
 };
@@ -156,6 +165,11 @@ public:
     // given (trial) stresses replaces the in-plane targets of the next evaluate(); returns the
     // largest change of a target relative to max(|s_p|, 1 kPa). 0 for pairs without targets.
     virtual double regather(const ElementStresses&) { return 0.0; }
+    // After Newton converged with sub-increments held through the increment
+    // (ContactPairSpec::hold_partition): the points whose slip grew past partition_regrowth
+    // times the one their sub-increments were chosen for choose again in the next evaluation.
+    // Returns how many will (0: the held sub-increments stand).
+    virtual std::size_t release_outgrown_partitions() { return 0; }
 
     virtual ContactResultant resultant() const = 0;
     // Every point of the pair in the state of the last converged increment.

@@ -44,6 +44,14 @@ double ContactSet::regather(const ElementStresses& trial) {
     return change;
 }
 
+std::size_t ContactSet::release_outgrown_partitions() {
+    std::size_t n = 0;
+    for (auto& c : pairs_) {
+        n += c->release_outgrown_partitions();
+    }
+    return n;
+}
+
 void ContactSet::commit() {
     for (auto& c : pairs_) {
         c->commit();

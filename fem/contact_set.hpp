@@ -57,6 +57,8 @@ public:
     }
     // Implicit gather: the largest relative change of a target over the pairs.
     double regather(const ElementStresses& trial);
+    // Points over all pairs whose held sub-increments were released (ContactPair).
+    std::size_t release_outgrown_partitions();
     void commit();
     void set_probing(bool on) {
         for (auto& c : pairs_) {

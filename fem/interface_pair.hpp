@@ -48,6 +48,7 @@ public:
             for (std::size_t i = 0; i < kin_->n_points(); ++i) {
                 set_targets(i);
             }
+            hold_partitions();
         }
         // Deferred Jacobian: the residual needs only the base lanes; the Eq. 37 lanes run when
         // the solver asks for the tangent (not after the residual that converges).
@@ -86,6 +87,7 @@ public:
         for (std::size_t i = 0; i < kin_->n_points(); ++i) {
             take_traction(points_, i);
         }
+        remember_partitions();
         kin_->assemble(traction_, f_int, nullptr);
         return true;
     }
@@ -188,6 +190,7 @@ protected:
     }
 
     void new_increment() override {
+        held_count_.assign(held_count_.size(), 0.0);
         calm_.resize(relax_.size(), 0);
         for (std::size_t i = 0; i < relax_.size(); ++i) {
             if (relax_[i] >= 1.0 || ++calm_[i] < calm_increments) {
@@ -232,6 +235,62 @@ protected:
         count(rep);
         for (std::size_t i = 0; i < kin_->n_points(); ++i) {
             take_traction(points_, i);
+        }
+    }
+
+    bool holds_partition() const {
+        return spec_.hold_partition && spec_.options.interface.adaptive;
+    }
+    static double slip_size(const ContactPoints<M>& cp, std::size_t i) {
+        return std::max(std::abs(cp.input(contact_col::dg1)[i]),
+                        std::abs(cp.input(contact_col::dg2)[i]));
+    }
+
+    // The base lanes' sub-increments of this evaluation: the held ones, or (none held yet)
+    // the error control's.
+    void hold_partitions() {
+        const std::size_t n = kin_->n_points();
+        held_count_.resize(n, 0.0);
+        held_slip_.resize(n, 0.0);
+        const bool hold = holds_partition();
+        for (std::size_t i = 0; i < n; ++i) {
+            points_.input(contact_col::forced)[i] = hold ? held_count_[i] : 0.0;
+        }
+    }
+
+    // Released only between Newton solves, never inside one: a count that changes between
+    // iterations puts a jump into the residual that the solve cannot converge through (the
+    // coarse §6 scene, released as soon as the slip grew: Newton stalled at 2.4e-4 in gravity
+    // stage 2).
+    std::size_t release_outgrown_partitions() override {
+        if (!holds_partition()) {
+            return 0;
+        }
+        std::size_t n = 0;
+        for (std::size_t i = 0; i < held_count_.size(); ++i) {
+            if (held_count_[i] > 0.0 &&
+                slip_size(points_, i) > spec_.partition_regrowth * held_slip_[i]) {
+                held_count_[i] = 0.0;
+                ++n;
+            }
+        }
+        return n;
+    }
+
+    // After a successful evaluation that the increment's Newton iteration goes on from (not a
+    // probe): points that chose their sub-increments keep that count for the evaluations
+    // that follow. Open points run no sub-increments and choose when they close.
+    void remember_partitions() {
+        if (!holds_partition() || probing_) {
+            return;
+        }
+        for (std::size_t i = 0; i < kin_->n_points(); ++i) {
+            const double count = points_.output(contact_col::subincrements)[i];
+            if (held_count_[i] == 0.0 && count > 0.0 &&
+                points_.output(contact_col::open)[i] < 0.5) {
+                held_count_[i] = count;
+                held_slip_[i] = slip_size(points_, i);
+            }
         }
     }
 
@@ -307,6 +366,9 @@ private:
     std::vector<double> relax_; // per point: share lambda of the continuum's in-plane targets
     std::vector<int> calm_;     // per point: increments since its last relaxation
     double k_lo_ = 0.5;         // 1 - sin(kappa phi_c): at-rest bounds of the in-plane targets
+    // Per point, within the current increment: the equal sub-increments held (0: none yet)
+    // and the slip they were chosen for (ContactPairSpec::hold_partition).
+    std::vector<double> held_count_, held_slip_;
     ContactPoints<M> points_;
     ContactEngine<M> engine_;
 };

@@ -84,6 +84,15 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
                 solve_start = it + 1;
                 continue;
             }
+            if (partitions_released(info)) {
+                if (!residual_pass(t_end, du_, error)) {
+                    return false;
+                }
+                rel = norm2(residual_) / reference_force_;
+                last_correction = std::numeric_limits<double>::infinity();
+                solve_start = it + 1;
+                continue;
+            }
             if (stagnated) {
                 info.stagnated = true;
                 ++counters_.stagnation_accepts;
@@ -248,6 +257,20 @@ bool StaticSolver::newton_step(double t_end, double& rel, double& correction, In
     correction = alpha * norm2(correction_) / std::max(norm2(du_), 1.0e-300);
     info.corrections.push_back(correction);
     rel = rel_new;
+    return true;
+}
+
+bool StaticSolver::partitions_released(IncrementInfo& info) {
+    if (contacts_.empty() || info.partition_solves >= max_partition_solves) {
+        return false;
+    }
+    const std::size_t released = contacts_.release_outgrown_partitions();
+    if (released == 0) {
+        return false;
+    }
+    ++info.partition_solves;
+    ++counters_.partition_solves;
+    counters_.partition_releases += static_cast<long>(released);
     return true;
 }
 

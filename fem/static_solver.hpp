@@ -72,6 +72,8 @@ struct SolverCounters {
     long predictor_rejections = 0;    // tangent guesses whose residual was above the zero guess's
     long gathers = 0;                 // re-gathers of the in-plane targets (implicit gather)
     double worst_gather_change = 0.0; // largest target change left in an accepted increment
+    long partition_solves = 0;        // Newton solves run again for released sub-increments
+    long partition_releases = 0;      // contact points whose held sub-increments were released
     long contact_relaxed_reruns = 0;  // see ContactPairCounters
     double contact_relaxed_point_updates = 0.0;
     long contact_band_clamped = 0;      // point evaluations on a clamped band (clamp_band = true)
@@ -114,6 +116,7 @@ struct IncrementInfo {
     bool stagnated = false;          // accepted at the inner solves' noise floor
     int gathers = 0;                 // re-gathers of the in-plane targets
     double gather_change = 0.0;      // the last re-gather's largest relative target change
+    int partition_solves = 0;        // solves run again for released sub-increments
     std::vector<double> residuals;   // relative residual at each evaluation
     std::vector<double> corrections; // relative correction of each Newton iteration
     StageCursor next;                // after a converged increment: where the stage goes on
@@ -255,6 +258,12 @@ private:
     ElementStresses stresses(bool trial) const;
     // After Newton converged: re-gathers the in-plane targets; true when they settled.
     bool targets_settled(IncrementInfo& info, std::string& error);
+    // After Newton converged with held sub-increments (ContactPairSpec::hold_partition): true
+    // when points whose slip outgrew theirs were released, so that one more solve runs with
+    // sub-increments chosen for the converged slip (at most max_partition_solves per increment;
+    // the slip only grows between them, so the count is a guard, not a limit reached in practice).
+    bool partitions_released(IncrementInfo& info);
+    static constexpr int max_partition_solves = 3;
     void commit_increment(double dt);
     StageResult stage_from(const Stage& stage, StageCursor from,
                            const IncrementCallback& on_increment,

@@ -96,7 +96,8 @@ const std::vector<std::string_view>& boundary_value_interface_keys() {
                                                        "fabric",
                                                        "model_tolerance",
                                                        "newton_jacobian",
-                                                       "jacobian_tolerance"};
+                                                       "jacobian_tolerance",
+                                                       "adaptive_partition"};
     return keys;
 }
 
@@ -157,6 +158,10 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
                              : NewtonJacobian::perturbation;
     is.jacobian_tolerance =
         t.number_or("jacobian_tolerance", is.jacobian_tolerance, Bounds::closed_open(0.0, 1.0));
+    // Adaptive sub-increments held through an increment's Newton iterations or chosen anew in
+    // each (docs/fem.md).
+    pair.hold_partition =
+        t.choice_or("adaptive_partition", "increment", {"increment", "iteration"}) == "increment";
     pair.initial_state = state_function(t, f.material, f.stress_start, soil.void_ratio);
     // Check the state keys now, with the slave body's initial stress.
     pair.initial_state(vertical_local(soil.stress, mesh.dim()));

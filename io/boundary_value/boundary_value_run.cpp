@@ -52,6 +52,9 @@ nlohmann::ordered_json pair_details(const BoundaryValueInterface& bi) {
         j["roughness"] = bi.formulation.material.roughness;
         j["shear_band_thickness"] = bi.pair.options.interface.shear_band_thickness;
         j["subincrement"] = bi.formulation.subincrement;
+        if (bi.pair.options.interface.adaptive) {
+            j["adaptive_partition"] = bi.pair.hold_partition ? "increment" : "iteration";
+        }
         j["jacobian"] = bi.formulation.jacobian;
         if (bi.formulation.formulation == InterfaceFormulation::stutz) {
             j["stutz_initial_stress"] = bi.formulation.stutz_initial_stress;
@@ -315,6 +318,8 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     k["line_search_steps"] = c.line_search_steps;
     k["stagnation_accepts"] = c.stagnation_accepts;
     k["gathers"] = c.gathers;
+    k["partition_solves"] = c.partition_solves;
+    k["partition_releases"] = c.partition_releases;
     k["material_evaluations"] = c.constitutive_evaluations;
     k["tangent_evaluations"] = c.tangent_evaluations;
     k["tangent_fallbacks"] = c.tangent_fallbacks;

@@ -305,6 +305,65 @@ TEST(ContactEngine, LaneCountsOfTheJacobianSchemes) {
     }
 }
 
+// A base lane held to equal sub-increments (contact_col::forced, as a boundary-value pair
+// holds them through an increment) that takes exactly that many is its own reference re-run:
+// the engine copies it instead of running the reference lane. Checked against independent runs:
+// the slave's t1 column (frame = global axes, so it is the global y column) equals the forward
+// difference of a lone base lane at dg1 - theta with the same held count against the held base,
+// bit for bit; and the copied reference lanes are not counted as lanes.
+TEST(ContactEngine, HeldBaseLaneIsItsOwnReference) {
+    const auto mp = l4c(0.9);
+    const int ndim = 3;
+    const std::size_t n = 12;
+    HPoints cp(n, ndim);
+    fill_varied(cp, ndim, 31);
+    const Frame global{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
+    for (std::size_t i = 0; i < n; ++i) {
+        set_frame(cp, i, global);
+    }
+    ContactOptions opt = fast_options(ndim);
+    opt.interface.adaptive = true;
+    ContactEngine<Hypoplasticity> engine;
+    ASSERT_TRUE(engine.update(cp, mp, opt).ok());
+    for (std::size_t i = 0; i < n; ++i) {
+        cp.input(contact_col::forced)[i] = cp.output(contact_col::subincrements)[i];
+    }
+    const ContactReport rep = engine.update(cp, mp, opt);
+    ASSERT_TRUE(rep.ok());
+    double copied = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        copied += cp.output(contact_col::subincrements)[i] == cp.input(contact_col::forced)[i];
+    }
+    EXPECT_GT(copied, 0.0);
+    EXPECT_EQ(rep.lanes, static_cast<double>(n) * (2.0 * ndim + 2.0) - copied);
+
+    // The slave's t1 lane alone: the gap increment along t1 is master minus slave motion.
+    HPoints lone(n, ndim);
+    fill_varied(lone, ndim, 31);
+    for (std::size_t i = 0; i < n; ++i) {
+        set_frame(lone, i, global);
+        lone.input(contact_col::forced)[i] = cp.input(contact_col::forced)[i];
+        lone.input(contact_col::dg1)[i] -= opt.perturbation;
+    }
+    ContactOptions base_only = opt;
+    base_only.jacobian = ContactJacobian::analytical;
+    ContactEngine<Hypoplasticity> lone_engine;
+    ASSERT_TRUE(lone_engine.update(lone, mp, base_only).ok());
+    for (std::size_t i = 0; i < n; ++i) {
+        if (cp.output(contact_col::subincrements)[i] != cp.input(contact_col::forced)[i]) {
+            continue; // the held base halved: its reference lane ran
+        }
+        for (int comp = 1; comp < 3; ++comp) {
+            const double diff = (lone.output(contact_col::traction + comp)[i] -
+                                 cp.output(contact_col::traction + comp)[i]) /
+                                opt.perturbation;
+            EXPECT_TRUE(same_bits(cp.jacobian(i, comp, 1), diff))
+                << "point " << i << " component " << comp << ": " << cp.jacobian(i, comp, 1)
+                << " vs " << diff;
+        }
+    }
+}
+
 // 50 varied points (random states, increments, targets and frames; 50 is not a multiple of the
 // lane width, so padding lanes run too): the SIMD path against the scalar path. Tractions and
 // states agree to round-off (measured <= 1.2e-15 relative); the Jacobian columns, forward

@@ -217,6 +217,57 @@ TEST(FeShearBox, DeferredJacobianLanesGiveBitwiseEqualResultsWithFewerLanes) {
     }
 }
 
+// Adaptive sub-increments held through each increment's Newton iterations
+// (ContactPairSpec::hold_partition, the default) against sub-increments chosen anew in every
+// evaluation: the held run does less interface work and stays, like the other, within the
+// error control's tolerance of a tight reference (tolerances 1e-5 for Algorithm 1, its error
+// control and the model). One thread against two gives the same bits with held sub-increments.
+TEST(FeShearBox, HeldSubincrementsCostLessAndStayAsAccurate) {
+    ShearBoxOptions o;
+    o.steps = 10;
+    o.displacement = 2.0e-3;
+    auto with = [&](bool hold, double tolerance, int threads) {
+        o.threads = threads;
+        o.adjust = [hold, tolerance](ContactPairSpec& c) {
+            c.options.interface.adaptive = true;
+            c.hold_partition = hold;
+            if (tolerance > 0.0) {
+                c.options.interface.tolerance = tolerance;
+                c.options.interface.adaptive_tolerance = tolerance;
+                c.options.interface.model.tolerance = tolerance;
+            }
+        };
+        return run_shear_box(o);
+    };
+    const ShearBoxRun ref = with(false, 1.0e-5, 0);
+    const ShearBoxRun held = with(true, 0.0, 1);
+    const ShearBoxRun anew = with(false, 0.0, 0);
+    ASSERT_TRUE(ref.ok && held.ok && anew.ok) << ref.reason << held.reason << anew.reason;
+    ASSERT_EQ(held.t_t1.size(), ref.t_t1.size());
+    ASSERT_EQ(anew.t_t1.size(), ref.t_t1.size());
+    double err_held = 0.0, err_anew = 0.0, scale = 0.0;
+    for (std::size_t k = 0; k < ref.t_t1.size(); ++k) {
+        err_held = std::max(err_held, std::abs(held.t_t1[k] - ref.t_t1[k]));
+        err_anew = std::max(err_anew, std::abs(anew.t_t1[k] - ref.t_t1[k]));
+        scale = std::max(scale, std::abs(ref.t_t1[k]));
+    }
+    std::printf("shear error against the reference: held %.3g kPa, chosen anew %.3g kPa (of %.3g); "
+                "interface model substeps %.0f held, %.0f anew\n",
+                err_held, err_anew, scale, held.counters.contact_model_substeps,
+                anew.counters.contact_model_substeps);
+    // Both within the error control's tolerance (2e-3) of the shear they reach; the held run
+    // with fewer model substeps (the interface models' unit of work).
+    const double tolerance = InterfaceSettings{}.adaptive_tolerance;
+    EXPECT_LE(err_held, tolerance * scale);
+    EXPECT_LE(err_anew, tolerance * scale);
+    EXPECT_LT(held.counters.contact_model_substeps, anew.counters.contact_model_substeps);
+
+    const ShearBoxRun two = with(true, 0.0, 2);
+    ASSERT_TRUE(two.ok) << two.reason;
+    ASSERT_EQ(held.u.size(), two.u.size());
+    EXPECT_EQ(std::memcmp(held.u.data(), two.u.data(), held.u.size() * sizeof(double)), 0);
+}
+
 TEST(FeShearBox, OneAndTwoThreadsGiveBitwiseEqualDisplacements) {
     ShearBoxOptions o;
     o.steps = 4;
