@@ -61,8 +61,9 @@ struct ContactPairSpec {
     bool defer_jacobian = false;
     // Continuum with adaptive sub-increments: true holds each point's sub-increments, chosen by
     // the error control in the increment's first evaluation, as that many equal ones through
-    // the Newton iterations that follow (chosen again where the slip grows past
-    // partition_regrowth times the one they were chosen for); false chooses them anew in every
+    // the Newton iterations that follow (chosen again after convergence where the slip moved
+    // by more than (partition_regrowth - 1) times the one they were chosen for); false chooses
+    // them anew in every
     // evaluation. Held, the residual is one smooth function of the displacement within an
     // increment and the base lane takes one Algorithm 1 solve per sub-increment instead of
     // the step doubling's three (docs/fem.md, "Sub-increments held through an increment").
@@ -166,10 +167,14 @@ public:
     // largest change of a target relative to max(|s_p|, 1 kPa). 0 for pairs without targets.
     virtual double regather(const ElementStresses&) { return 0.0; }
     // After Newton converged with sub-increments held through the increment
-    // (ContactPairSpec::hold_partition): the points whose slip grew past partition_regrowth
-    // times the one their sub-increments were chosen for choose again in the next evaluation.
+    // (ContactPairSpec::hold_partition): the points whose slip moved by more than
+    // (partition_regrowth - 1) times the one their sub-increments were chosen for (at least the
+    // paper's sub-increment of slip) choose again in the next evaluation.
     // Returns how many will (0: the held sub-increments stand).
     virtual std::size_t release_outgrown_partitions() { return 0; }
+    // The last evaluation is an iterate the Newton iteration goes on from: points that chose
+    // their sub-increments in it hold that count for the rest of the increment.
+    virtual void hold_chosen_partitions() {}
 
     virtual ContactResultant resultant() const = 0;
     // Every point of the pair in the state of the last converged increment.

@@ -52,6 +52,12 @@ std::size_t ContactSet::release_outgrown_partitions() {
     return n;
 }
 
+void ContactSet::hold_chosen_partitions() {
+    for (auto& c : pairs_) {
+        c->hold_chosen_partitions();
+    }
+}
+
 void ContactSet::commit() {
     for (auto& c : pairs_) {
         c->commit();

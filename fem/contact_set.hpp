@@ -59,6 +59,7 @@ public:
     double regather(const ElementStresses& trial);
     // Points over all pairs whose held sub-increments were released (ContactPair).
     std::size_t release_outgrown_partitions();
+    void hold_chosen_partitions();
     void commit();
     void set_probing(bool on) {
         for (auto& c : pairs_) {

@@ -87,7 +87,6 @@ public:
         for (std::size_t i = 0; i < kin_->n_points(); ++i) {
             take_traction(points_, i);
         }
-        remember_partitions();
         kin_->assemble(traction_, f_int, nullptr);
         return true;
     }
@@ -97,6 +96,7 @@ public:
 
     void commit() override {
         points_.commit();
+        held_count_.assign(held_count_.size(), 0.0); // an evaluation between increments chooses
         for (double l : relax_) {
             counters_.relaxed_point_updates += l < 1.0 ? 1.0 : 0.0;
         }
@@ -241,21 +241,29 @@ protected:
     bool holds_partition() const {
         return spec_.hold_partition && spec_.options.interface.adaptive;
     }
-    static double slip_size(const ContactPoints<M>& cp, std::size_t i) {
-        return std::max(std::abs(cp.input(contact_col::dg1)[i]),
-                        std::abs(cp.input(contact_col::dg2)[i]));
-    }
 
     // The base lanes' sub-increments of this evaluation: the held ones, or (none held yet)
     // the error control's.
     void hold_partitions() {
         const std::size_t n = kin_->n_points();
         held_count_.resize(n, 0.0);
-        held_slip_.resize(n, 0.0);
+        held_slip_.resize(2 * n, 0.0);
         const bool hold = holds_partition();
         for (std::size_t i = 0; i < n; ++i) {
             points_.input(contact_col::forced)[i] = hold ? held_count_[i] : 0.0;
         }
+    }
+
+    // The slip change since the count was chosen, against its allowance: (regrowth - 1) times
+    // the slip it was chosen for, at least the paper's sub-increment (max_subincrement d_s0),
+    // so that growth, a reversal and a count chosen at zero slip are all caught.
+    bool outgrown(std::size_t i) const {
+        const double d1 = points_.input(contact_col::dg1)[i] - held_slip_[2 * i];
+        const double d2 = points_.input(contact_col::dg2)[i] - held_slip_[2 * i + 1];
+        const InterfaceSettings& is = spec_.options.interface;
+        const double floor = is.max_subincrement * is.shear_band_thickness;
+        const double chosen = std::hypot(held_slip_[2 * i], held_slip_[2 * i + 1]);
+        return std::hypot(d1, d2) > (spec_.partition_regrowth - 1.0) * std::max(chosen, floor);
     }
 
     // Released only between Newton solves, never inside one: a count that changes between
@@ -268,8 +276,7 @@ protected:
         }
         std::size_t n = 0;
         for (std::size_t i = 0; i < held_count_.size(); ++i) {
-            if (held_count_[i] > 0.0 &&
-                slip_size(points_, i) > spec_.partition_regrowth * held_slip_[i]) {
+            if (held_count_[i] > 0.0 && outgrown(i)) {
                 held_count_[i] = 0.0;
                 ++n;
             }
@@ -277,11 +284,12 @@ protected:
         return n;
     }
 
-    // After a successful evaluation that the increment's Newton iteration goes on from (not a
-    // probe): points that chose their sub-increments keep that count for the evaluations
-    // that follow. Open points run no sub-increments and choose when they close.
-    void remember_partitions() {
-        if (!holds_partition() || probing_) {
+    // Called by the solver for each iterate its Newton iteration goes on from (the residual it
+    // starts from, every accepted line-search step; not rejected trials or probes): points
+    // that chose their sub-increments in that evaluation keep the count. Open points run no
+    // sub-increments and choose when they close.
+    void hold_chosen_partitions() override {
+        if (!holds_partition() || probing_ || held_count_.size() != kin_->n_points()) {
             return;
         }
         for (std::size_t i = 0; i < kin_->n_points(); ++i) {
@@ -289,7 +297,8 @@ protected:
             if (held_count_[i] == 0.0 && count > 0.0 &&
                 points_.output(contact_col::open)[i] < 0.5) {
                 held_count_[i] = count;
-                held_slip_[i] = slip_size(points_, i);
+                held_slip_[2 * i] = points_.input(contact_col::dg1)[i];
+                held_slip_[2 * i + 1] = points_.input(contact_col::dg2)[i];
             }
         }
     }
@@ -367,7 +376,7 @@ private:
     std::vector<int> calm_;     // per point: increments since its last relaxation
     double k_lo_ = 0.5;         // 1 - sin(kappa phi_c): at-rest bounds of the in-plane targets
     // Per point, within the current increment: the equal sub-increments held (0: none yet)
-    // and the slip they were chosen for (ContactPairSpec::hold_partition).
+    // and the slip (dg1, dg2) they were chosen for (ContactPairSpec::hold_partition).
     std::vector<double> held_count_, held_slip_;
     ContactPoints<M> points_;
     ContactEngine<M> engine_;

@@ -55,6 +55,8 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
     // increments that had converged to 1e-10 twice and were restarted by a gather).
     int solve_start = 0;
     for (int it = 0;; ++it) {
+        // The contacts' last evaluation is this iterate's: their sub-increment choices hold.
+        contacts_.hold_chosen_partitions();
         info.residuals.push_back(rel);
         if (on_iteration) {
             on_iteration(info);

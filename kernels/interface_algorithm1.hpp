@@ -223,8 +223,10 @@ void interface_step(const typename M::Params& mp, const InterfaceSettings& s,
         }
         const auto a = solve_subincrement<M, T>(mp, s, c.cur.y, g2, c.dgam1 * hh, c.dgam2 * hh,
                                                 target_at(c.t + hh), accept && !c.forced, c.stats);
-        const auto b = solve_subincrement<M, T>(mp, s, a.y, a.x, c.dgam1 * hh, c.dgam2 * hh,
-                                                target_at(t_end), accept && a.converged, c.stats);
+        // Forced lanes run neither half (a is masked off for them and reports converged).
+        const auto b =
+            solve_subincrement<M, T>(mp, s, a.y, a.x, c.dgam1 * hh, c.dgam2 * hh, target_at(t_end),
+                                     accept && a.converged && !c.forced, c.stats);
         const Mask both = accept && a.converged && b.converged;
         // Error of the shear stresses (the normal ones are pinned by Eqs. 18-20).
         const T dt1 = b.y[3] - full.y[3];
@@ -250,7 +252,7 @@ void interface_step(const typename M::Params& mp, const InterfaceSettings& s,
         // a half whose Newton failed where the full one converged), else the error control's.
         const Mask ran = c.active && full.converged; // the halves ran where this holds
         const Mask a_ok = a.converged || !(ran && !c.forced);
-        const Mask b_ok = b.converged || !(ran && a.converged);
+        const Mask b_ok = b.converged || !(ran && a.converged && !c.forced);
         const Mask fa = !full.converged, fh = !fa && !a_ok, fb = !fa && !fh && !b_ok;
         const Mask model_failed =
             (fa && full.model_failed) || (fh && a.model_failed) || (fb && b.model_failed);

@@ -364,6 +364,38 @@ TEST(ContactEngine, HeldBaseLaneIsItsOwnReference) {
     }
 }
 
+// A held (forced) base lane next to a lane that still chooses its sub-increments shares a
+// SIMD batch that runs the step doubling: the forced lane must run neither half, so its work
+// counters (and the work bounds that read them) are those of the scalar path, where it runs
+// alone (before the fix the batch added the second half's solve to them).
+TEST(ContactEngine, ForcedLaneDoesNoStepDoublingWorkBesideAnAdaptiveOne) {
+    const auto mp = l4c(0.9);
+    const int ndim = 3;
+    ContactOptions opt = fast_options(ndim);
+    opt.interface.adaptive = true;
+    opt.jacobian = ContactJacobian::analytical; // base lanes only
+    HPoints pair(2, ndim), alone(1, ndim);
+    fill_varied(pair, ndim, 5);
+    fill_varied(alone, ndim, 5); // point 0 is the same in both
+    pair.input(contact_col::forced)[0] = 4.0;
+    alone.input(contact_col::forced)[0] = 4.0;
+    ContactEngine<Hypoplasticity> engine;
+    ASSERT_TRUE(engine.update(pair, mp, opt).ok());
+    ASSERT_TRUE(engine.update(alone, mp, opt).ok());
+    opt.simd = false;
+    HPoints scalar(1, ndim);
+    fill_varied(scalar, ndim, 5);
+    scalar.input(contact_col::forced)[0] = 4.0;
+    ASSERT_TRUE(engine.update(scalar, mp, opt).ok());
+    EXPECT_EQ(pair.output(contact_col::subincrements)[0], 4.0);
+    for (const int col :
+         {contact_col::evaluations, contact_col::model_substeps, contact_col::newton_iterations}) {
+        EXPECT_EQ(pair.output(col)[0], alone.output(col)[0]) << "column " << col;
+        EXPECT_EQ(pair.output(col)[0], scalar.output(col)[0]) << "column " << col;
+    }
+    EXPECT_GT(pair.output(contact_col::subincrements)[1], 0.0);
+}
+
 // 50 varied points (random states, increments, targets and frames; 50 is not a multiple of the
 // lane width, so padding lanes run too): the SIMD path against the scalar path. Tractions and
 // states agree to round-off (measured <= 1.2e-15 relative); the Jacobian columns, forward
