@@ -286,8 +286,9 @@ protected:
 
     // Called by the solver for each iterate its Newton iteration goes on from (the residual it
     // starts from, every accepted line-search step; not rejected trials or probes): points
-    // that chose their sub-increments in that evaluation keep the count. Open points run no
-    // sub-increments and choose when they close.
+    // that chose their sub-increments in that evaluation keep the count. Open points (output
+    // open = 1: separated, and touching ones between -open_threshold and 0, which run
+    // Algorithm 1 at sigma_N = -threshold) are not held: they choose in every evaluation.
     void hold_chosen_partitions() override {
         if (!holds_partition() || probing_ || held_count_.size() != kin_->n_points()) {
             return;

@@ -73,20 +73,16 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
                                it - solve_start >= 3 && rel <= settings_.stagnation_tolerance &&
                                rel > 0.5 * r[r.size() - 4];
         if (converged || stagnated) {
-            if (!targets_settled(info, error)) {
-                if (!error.empty()) {
-                    return false;
-                }
-                // New targets: the residual of the same displacements with them.
-                if (!residual_pass(t_end, du_, error)) {
-                    return false;
-                }
-                rel = norm2(residual_) / reference_force_;
-                last_correction = std::numeric_limits<double>::infinity();
-                solve_start = it + 1;
-                continue;
+            // A line-search trial that failed before a smaller step succeeded left its message
+            // in error: only targets_settled may speak now.
+            error.clear();
+            const bool settled = targets_settled(info, error);
+            if (!error.empty()) {
+                return false; // the targets did not settle in max_gathers
             }
-            if (partitions_released(info)) {
+            if (!settled || partitions_released(info)) {
+                // New targets, or sub-increments chosen again: the residual of the same
+                // displacements with them starts another solve.
                 if (!residual_pass(t_end, du_, error)) {
                     return false;
                 }

@@ -367,7 +367,8 @@ TEST(ContactEngine, HeldBaseLaneIsItsOwnReference) {
 // A held (forced) base lane next to a lane that still chooses its sub-increments shares a
 // SIMD batch that runs the step doubling: the forced lane must run neither half, so its work
 // counters (and the work bounds that read them) are those of the scalar path, where it runs
-// alone (before the fix the batch added the second half's solve to them).
+// alone (before the fix the batch added the second half's solve to them). Its SIMD batch
+// holds unforced lanes in either run: the other point, or the padding points.
 TEST(ContactEngine, ForcedLaneDoesNoStepDoublingWorkBesideAnAdaptiveOne) {
     const auto mp = l4c(0.9);
     const int ndim = 3;
