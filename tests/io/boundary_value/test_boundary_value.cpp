@@ -106,6 +106,19 @@ TEST(BoundaryValueScene, SetReachesNestedKeys) {
     EXPECT_EQ(s.mesh.element_set("soil").size(), 2u);
 }
 
+// adaptive_partition: held per increment by default, chosen anew with "iteration"; any other
+// word is refused naming the key.
+TEST(BoundaryValueScene, AdaptivePartitionKey) {
+    EXPECT_TRUE(test::parse_boundary_value(cnl_2d).contacts.at(0).pair.hold_partition);
+    EXPECT_FALSE(test::parse_boundary_value(cnl_2d, {"interface.adaptive_partition=\"iteration\""})
+                     .contacts.at(0)
+                     .pair.hold_partition);
+    const std::string text = test::read_text(cnl_2d);
+    test::expect_boundary_value_error(
+        test::replaced(text, "roughness = 0.9", "roughness = 0.9\nadaptive_partition = \"step\""),
+        "interface.adaptive_partition", "\"increment\" | \"iteration\"");
+}
+
 TEST(BoundaryValueScene, BadInputNamesFileAndKey) {
     const std::string text = test::read_text(cnl_2d);
     test::expect_boundary_value_error(
