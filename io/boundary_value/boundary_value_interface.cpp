@@ -97,6 +97,7 @@ const std::vector<std::string_view>& boundary_value_interface_keys() {
                                                        "model_tolerance",
                                                        "newton_jacobian",
                                                        "jacobian_tolerance",
+                                                       "polish_iterations",
                                                        "adaptive_partition"};
     return keys;
 }
@@ -137,6 +138,14 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     out.formulation = read_interface_formulation(t);
     const InterfaceFormulationSpec& f = out.formulation;
     if (f.is_coulomb()) {
+        // The inner-solve keys tune Algorithm 1 of the continuum formulations.
+        for (const char* key : {"model_tolerance", "newton_jacobian", "jacobian_tolerance",
+                                "polish_iterations", "adaptive_partition"}) {
+            if (t.has(key)) {
+                t.fail(key, "applies to formulations \"novel\" and \"stutz\" only; expected no "
+                            "such key for formulation \"coulomb\"");
+            }
+        }
         pair.options.interface.formulation = InterfaceFormulation::coulomb;
         pair.friction = f.coulomb;
         return out;
@@ -158,6 +167,8 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
                              : NewtonJacobian::perturbation;
     is.jacobian_tolerance =
         t.number_or("jacobian_tolerance", is.jacobian_tolerance, Bounds::closed_open(0.0, 1.0));
+    is.polish_iterations =
+        static_cast<int>(t.integer_or("polish_iterations", is.polish_iterations, 0, 10));
     // Adaptive sub-increments held through an increment's Newton iterations or chosen anew in
     // each (docs/fem.md).
     pair.hold_partition =

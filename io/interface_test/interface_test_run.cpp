@@ -94,6 +94,7 @@ void add_interface_test_results(RunSummary& summary, const InterfaceTestScene& s
                         {"step_cuts", c.step_cuts},
                         {"band_clamped_steps", c.band_clamped_steps},
                         {"frozen_retries", c.frozen_retries},
+                        {"stagnation_accepts", c.stagnation_accepts},
                         {"subincrements", rounded(c.subincrements)},
                         {"constitutive_evaluations", rounded(c.constitutive_evaluations)},
                         {"interface_newton_iterations", rounded(c.interface_newton_iterations)},

@@ -139,7 +139,7 @@ void read_integration(const TableReader& root, InterfaceTestScene& scene) {
     }
     const TableReader t = root.table("integration");
     t.allow_only({"tolerance", "min_pressure", "max_substeps", "newton_tolerance",
-                  "max_newton_iterations", "interface_newton_jacobian",
+                  "stagnation_tolerance", "max_newton_iterations", "interface_newton_jacobian",
                   "interface_max_newton_iterations", "polish_iterations", "adaptive_tolerance",
                   "band_collapse", "min_band_fraction", "scheme", "max_step_substeps"});
     InterfaceTestSpec& spec = scene.spec;
@@ -152,6 +152,16 @@ void read_integration(const TableReader& root, InterfaceTestScene& scene) {
     spec.contact.interface.model = m;
     spec.newton_tolerance =
         t.number_or("newton_tolerance", spec.newton_tolerance, Bounds::open(0.0, 1.0));
+    // Off unless named: equal to the step tolerance, no stalled step is accepted.
+    spec.stagnation_tolerance = spec.newton_tolerance;
+    spec.stagnation_tolerance =
+        t.number_or("stagnation_tolerance", spec.stagnation_tolerance, Bounds::open(0.0, 1.0));
+    if (spec.stagnation_tolerance < spec.newton_tolerance) {
+        t.fail("stagnation_tolerance",
+               fmt::format("expected at least newton_tolerance ({:g}): a stalled step is accepted "
+                           "only above the tolerance it failed to reach",
+                           spec.newton_tolerance));
+    }
     spec.max_newton_iterations = static_cast<int>(
         t.integer_or("max_newton_iterations", spec.max_newton_iterations, 1, 10'000));
     spec.max_step_substeps =

@@ -119,6 +119,32 @@ TEST(BoundaryValueScene, AdaptivePartitionKey) {
         "interface.adaptive_partition", "\"increment\" | \"iteration\"");
 }
 
+// polish_iterations (Algorithm 1's Newton corrections after its tolerance is met) reaches the
+// pair's interface settings; the keys that tune Algorithm 1 are refused with Coulomb friction
+// (they were read and ignored before), naming the key.
+TEST(BoundaryValueScene, PolishIterationsKeyAndInnerSolveKeysRefusedWithCoulomb) {
+    EXPECT_EQ(test::parse_boundary_value(cnl_2d).contacts.at(0).pair.options.interface
+                  .polish_iterations,
+              1);
+    EXPECT_EQ(test::parse_boundary_value(cnl_2d, {"interface.polish_iterations=3"})
+                  .contacts.at(0)
+                  .pair.options.interface.polish_iterations,
+              3);
+    const std::string text = test::read_text(cnl_2d);
+    test::expect_boundary_value_error(
+        test::replaced(text, "roughness = 0.9", "roughness = 0.9\npolish_iterations = 11"),
+        "interface.polish_iterations", "10");
+    const std::string coulomb = test::read_text("scenes/fe-simple-shear-coulomb-2d.toml");
+    for (const char* key : {"model_tolerance = 1e-5", "polish_iterations = 2",
+                            "adaptive_partition = \"iteration\""}) {
+        const std::string name = std::string(key).substr(0, std::string(key).find(' '));
+        test::expect_boundary_value_error(
+            test::replaced(coulomb, "formulation = \"coulomb\"",
+                           std::string("formulation = \"coulomb\"\n") + key),
+            "interface." + name, "formulation \"coulomb\"");
+    }
+}
+
 TEST(BoundaryValueScene, BadInputNamesFileAndKey) {
     const std::string text = test::read_text(cnl_2d);
     test::expect_boundary_value_error(

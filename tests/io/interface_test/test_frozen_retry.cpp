@@ -1,6 +1,8 @@
 // A step whose Newton iteration stalls on the noise of adaptive step selection (the residual
 // jumps by about the integration tolerances as the unknowns move) is solved again with the
-// discretisation of its first evaluation frozen: 47 steps of a loose Sanisand band (2-3 s).
+// discretisation of its first evaluation frozen: 47 steps of a loose Sanisand band (2-3 s). At a
+// step tolerance of 1e-6 the frozen solves stall too and the run fails without the stagnation
+// acceptance (10-20 s).
 
 #include <algorithm>
 #include <cmath>
@@ -50,19 +52,9 @@ steps = 7
 du_t1 = -0.00007
 )";
 
-TEST(InterfaceFrozenRetry, StepStalledOnStepSelectionNoiseCompletes) {
-    const std::string scene = test::write_scene(stall_scene, "frozen-retry");
-    const fs::path out = test::fresh_dir("frozen-retry");
-    const auto r = test::run_cli_captured({"run", scene, "--out", out.string(), "-q"});
-    ASSERT_EQ(r.code, exit_code::ok) << r.err;
-    const auto summary = nlohmann::json::parse(test::read_text(out / "summary.json"));
-    EXPECT_EQ(summary["status"], "ok");
-    EXPECT_EQ(summary["rows"], 48);
-    // The run went through the retry (one step stalls on its adaptive discretisation).
-    EXPECT_GT(summary["counters"]["frozen_retries"].get<int>(), 0);
-
-    // The frozen solves meet the same equations: every row keeps the interface in equilibrium
-    // with the sample (shear) and the CNS spring (normal) to the Newton tolerance.
+// Every row is finite and keeps the interface in equilibrium with the sample (shear) and the
+// CNS spring (normal) to `tolerance` relative to max(|t_N|, 1 kPa); returns the rows.
+int check_rows(const fs::path& out, double tolerance) {
     const std::string csv = test::read_text(out / "history.csv");
     std::istringstream lines(csv);
     std::string header;
@@ -87,16 +79,62 @@ TEST(InterfaceFrozenRetry, StepStalledOnStepSelectionNoiseCompletes) {
         for (std::string c; std::getline(l, c, ',');) {
             v.push_back(std::stod(c));
         }
-        ASSERT_EQ(v.size(), names.size());
+        EXPECT_EQ(v.size(), names.size());
+        if (v.size() != names.size()) {
+            return rows;
+        }
         for (double x : v) {
-            ASSERT_TRUE(std::isfinite(x));
+            EXPECT_TRUE(std::isfinite(x));
         }
         // sigma_N of the band and the sample's s11 both carry t_N (Eq. 18).
-        EXPECT_NEAR(v[ss], v[tn], 1.0e-4 * std::max(1.0, std::abs(v[tn])));
+        EXPECT_NEAR(v[ss], v[tn], tolerance * std::max(1.0, std::abs(v[tn])));
         EXPECT_NEAR(v[sn], v[tn], 1.0e-2 * std::max(1.0, std::abs(v[tn])));
         EXPECT_LT(v[tn], 0.0);
     }
-    EXPECT_EQ(rows, 48);
+    return rows;
+}
+
+nlohmann::json run_stall_scene(const std::string& tag, const std::vector<std::string>& sets,
+                               int expected_code) {
+    const std::string scene = test::write_scene(stall_scene, "frozen-retry-" + tag);
+    const fs::path out = test::fresh_dir("frozen-retry-" + tag);
+    std::vector<std::string> args{"run", scene, "--out", out.string(), "-q"};
+    for (const std::string& s : sets) {
+        args.insert(args.end(), {"--set", s});
+    }
+    const auto r = test::run_cli_captured(args);
+    EXPECT_EQ(r.code, expected_code) << r.err;
+    auto summary = nlohmann::json::parse(test::read_text(out / "summary.json"));
+    if (expected_code == exit_code::ok) {
+        EXPECT_EQ(summary["rows"], 48);
+        EXPECT_EQ(check_rows(out, 1.0e-4), 48);
+    }
+    return summary;
+}
+
+TEST(InterfaceFrozenRetry, StepStalledOnStepSelectionNoiseCompletes) {
+    const auto summary = run_stall_scene("default", {}, exit_code::ok);
+    EXPECT_EQ(summary["status"], "ok");
+    // The run went through the retry (one step stalls on its adaptive discretisation).
+    EXPECT_GT(summary["counters"]["frozen_retries"].get<int>(), 0);
+    EXPECT_EQ(summary["counters"]["stagnation_accepts"].get<int>(), 0); // off by default
+}
+
+// At a step tolerance of 1e-6 the frozen solves stall as well (step 46 at 7.7e-5, the noise of
+// the band model's own adaptive substeps, which the retry does not freeze): without the
+// stagnation acceptance the run fails there; with it the best iterate below 1e-4 is taken and
+// every row keeps equilibrium to that bound.
+TEST(InterfaceFrozenRetry, TightToleranceStallIsAcceptedBelowTheStagnationTolerance) {
+    const auto strict =
+        run_stall_scene("strict", {"integration.newton_tolerance=1e-6"}, exit_code::run_failed);
+    EXPECT_NE(strict["reason"].get<std::string>().find("did not converge"), std::string::npos)
+        << strict["reason"];
+    const auto accepted = run_stall_scene(
+        "accepted", {"integration.newton_tolerance=1e-6", "integration.stagnation_tolerance=1e-4"},
+        exit_code::ok);
+    EXPECT_EQ(accepted["status"], "ok");
+    EXPECT_GT(accepted["counters"]["stagnation_accepts"].get<int>(), 0);
+    EXPECT_GT(accepted["counters"]["frozen_retries"].get<int>(), 0);
 }
 
 } // namespace

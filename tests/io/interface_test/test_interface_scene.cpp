@@ -336,6 +336,21 @@ TEST(InterfaceScene, OverridesReachInterfaceKeys) {
     }
 }
 
+// The stagnation acceptance is off unless named (equal to the step tolerance), and never below
+// the step tolerance.
+TEST(InterfaceScene, StagnationToleranceIsOffUnlessNamedAndNeverBelowTheStepTolerance) {
+    EXPECT_DOUBLE_EQ(parse_text(minimal).spec.stagnation_tolerance, 1e-4);
+    const InterfaceTestScene tight =
+        parse_text(minimal + "[integration]\nnewton_tolerance = 1e-8\n");
+    EXPECT_DOUBLE_EQ(tight.spec.stagnation_tolerance, 1e-8);
+    const InterfaceTestScene set = parse_text(
+        minimal + "[integration]\nnewton_tolerance = 1e-6\nstagnation_tolerance = 1e-4\n");
+    EXPECT_DOUBLE_EQ(set.spec.newton_tolerance, 1e-6);
+    EXPECT_DOUBLE_EQ(set.spec.stagnation_tolerance, 1e-4);
+    expect_error(minimal + "[integration]\nstagnation_tolerance = 1e-5\n",
+                 "integration.stagnation_tolerance", "expected at least newton_tolerance (0.0001)");
+}
+
 TEST(InterfaceScene, OutOfRangeValuesNameTheirKey) {
     const std::string cns = minimal + "[normal]\ncontrol = \"constant-stiffness\"\n";
     const std::string coulomb = with_in(minimal, "interface", "formulation = \"coulomb\"");
