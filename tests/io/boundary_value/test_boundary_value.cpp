@@ -123,9 +123,9 @@ TEST(BoundaryValueScene, AdaptivePartitionKey) {
 // pair's interface settings; the keys that tune Algorithm 1 are refused with Coulomb friction
 // (they were read and ignored before), naming the key.
 TEST(BoundaryValueScene, PolishIterationsKeyAndInnerSolveKeysRefusedWithCoulomb) {
-    EXPECT_EQ(test::parse_boundary_value(cnl_2d).contacts.at(0).pair.options.interface
-                  .polish_iterations,
-              1);
+    EXPECT_EQ(
+        test::parse_boundary_value(cnl_2d).contacts.at(0).pair.options.interface.polish_iterations,
+        1);
     EXPECT_EQ(test::parse_boundary_value(cnl_2d, {"interface.polish_iterations=3"})
                   .contacts.at(0)
                   .pair.options.interface.polish_iterations,
