@@ -319,6 +319,19 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
                 }
                 if (!sol.ok) {
                     why = sol.why;
+                    // A stall just above the tolerance is the inner solves' noise, not a wrong
+                    // direction: say which settings smooth it (the kappa = 1 Stutz case of
+                    // docs/reliability.md stalls at 1.05e-4 against 1e-4).
+                    const double stalled_at =
+                        std::min(sol.best_residual, first_stalled.best_residual);
+                    if (sol.stalled && sol.first.subincrements > 0.0 &&
+                        stalled_at < 10.0 * spec.stagnation_tolerance) {
+                        why += fmt::format(
+                            "; it stalled at {:.3g}, within 10x of the tolerance: the noise of "
+                            "Algorithm 1's inner solves, which [integration] polish_iterations = "
+                            "2 or a tighter [interface] tolerance smooth (docs/reliability.md)",
+                            stalled_at);
+                    }
                     if (over_budget || ++cuts > max_cuts) {
                         break;
                     }
