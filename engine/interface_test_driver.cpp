@@ -313,7 +313,9 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
                             sol.ok = true;
                             std::copy(best.best_x, best.best_x + 3, sol.x);
                             sol.ys = e.sample.y;
-                            sol.iterations = iterations_done;
+                            sol.iterations = iterations_done; // both solves' work
+                        } else if (!e.ok) {
+                            sol.why = e.why; // the re-evaluation's own failure (e.g. the budget)
                         }
                     }
                 }
@@ -324,13 +326,17 @@ InterfaceTestResult drive(const InterfaceTestSpec& spec, const typename Ms::Para
                     // docs/reliability.md stalls at 1.05e-4 against 1e-4).
                     const double stalled_at =
                         std::min(sol.best_residual, first_stalled.best_residual);
+                    const double accepted =
+                        std::max(spec.newton_tolerance, spec.stagnation_tolerance);
                     if (sol.stalled && sol.first.subincrements > 0.0 &&
-                        stalled_at < 10.0 * spec.stagnation_tolerance) {
+                        stalled_at < 10.0 * accepted) {
                         why += fmt::format(
-                            "; it stalled at {:.3g}, within 10x of the tolerance: the noise of "
-                            "Algorithm 1's inner solves, which [integration] polish_iterations = "
-                            "2 or a tighter [interface] tolerance smooth (docs/reliability.md)",
-                            stalled_at);
+                            "; it stalled at {:.3g}, within 10x of the accepted residual {:.3g}: "
+                            "likely the noise of the inner solves (Algorithm 1's stop, the "
+                            "models' adaptive substeps), which [integration] polish_iterations = "
+                            "2 or a tighter [interface] tolerance smooth, and [integration] "
+                            "stagnation_tolerance accepts (docs/reliability.md)",
+                            stalled_at, accepted);
                     }
                     if (over_budget || ++cuts > max_cuts) {
                         break;

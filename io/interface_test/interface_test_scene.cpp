@@ -134,6 +134,8 @@ InterfaceStage read_stage(const TableReader& t) {
 }
 
 void read_integration(const TableReader& root, InterfaceTestScene& scene) {
+    // The stagnation acceptance is off unless named: equal to the step tolerance.
+    scene.spec.stagnation_tolerance = scene.spec.newton_tolerance;
     if (!root.has("integration")) {
         return;
     }
