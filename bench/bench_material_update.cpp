@@ -3,7 +3,11 @@
 // so every iteration does the same work. Counter: evals_per_s = point updates per second.
 //
 //   build/bench/bench_material_update --benchmark_filter=Hypoplasticity
+//   build/bench/bench_material_update --benchmark_filter=SanisandPaths   (path 0 scalar, 1 SIMD
+//   batch by batch, 2 SIMD with lane refill)
 #include <benchmark/benchmark.h>
+
+#include <cmath>
 
 #include <tbb/global_control.h>
 
@@ -70,6 +74,32 @@ void BM_update(benchmark::State& state) {
     state.counters["substeps_per_eval"] = substeps / evals;
 }
 
+// Sanisand's three paths on the same points, one thread: path 0 scalar, 1 SIMD batch by batch
+// (a batch runs until its slowest lane is done; the path before lane refill), 2 SIMD with lane
+// refill (what batched_update runs). Increment norm 10^-exponent.
+void BM_sanisand_paths(benchmark::State& state) {
+    const auto points = static_cast<std::size_t>(state.range(0));
+    const long path = state.range(1);
+    const double increment = std::pow(10.0, -static_cast<double>(state.range(2)));
+    const auto params = bench_params<Sanisand>();
+    MaterialPoints<Sanisand> mp(points);
+    fill_samples(mp, params, SampleSpec{12345, increment});
+    UpdateOptions opt;
+    opt.simd = path != 0;
+    for (auto _ : state) {
+        if (path == 1) {
+            detail::update_range<Sanisand, simd::batch>(mp, params, opt, 0, mp.padded());
+        } else if (path == 2) {
+            detail::update_range_refill<Sanisand>(mp, params, opt, 0, mp.padded());
+        } else {
+            detail::update_range<Sanisand, double>(mp, params, opt, 0, mp.padded());
+        }
+        benchmark::DoNotOptimize(mp.trial(0));
+    }
+    const double evals = static_cast<double>(points) * static_cast<double>(state.iterations());
+    state.counters["evals_per_s"] = benchmark::Counter(evals, benchmark::Counter::kIsRate);
+}
+
 void sizes(benchmark::internal::Benchmark* b) {
     b->ArgNames({"points", "simd", "threads"});
     for (long n : {1L, 10L, 100L, 1000L, 10000L, 100000L}) {
@@ -86,6 +116,11 @@ BENCHMARK(BM_update<Hypoplasticity>)->Name("Hypoplasticity")->Apply(sizes);
 BENCHMARK(BM_update<Hypoplasticity, true>)->Name("HypoplasticityIdenticalStates")->Apply(sizes);
 BENCHMARK(BM_update<Sanisand>)->Name("Sanisand")->Apply(sizes);
 BENCHMARK(BM_update<LinearElastic>)->Name("LinearElastic")->Apply(sizes);
+BENCHMARK(BM_sanisand_paths)
+    ->Name("SanisandPaths")
+    ->ArgNames({"points", "path", "increment_exp"})
+    ->ArgsProduct({{4096}, {0, 1, 2}, {3, 4, 5}})
+    ->UseRealTime();
 
 } // namespace
 

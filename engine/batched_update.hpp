@@ -5,6 +5,7 @@
 // path point by point. A point's result depends only on its own data, so the result is bitwise
 // the same for any thread count; per-chunk sums are added in chunk order for the same reason.
 
+#include <algorithm>
 #include <cstddef>
 #include <limits>
 #include <vector>
@@ -84,7 +85,31 @@ void update_range(MaterialPoints<M>& mp, const typename M::Params& params, const
     }
 }
 
-// SIMD path with lane refill, for models integrated by integrate_explicit: a lane whose point
+// One substep attempt: the model's own where it has a substep loop of its own (Sanisand), else
+// integrate_explicit's. A model may also make its start state consistent before the first
+// attempt (consistent_start); the refill runs that on the batch, so each lane's arithmetic is
+// the same as in the model's integrate.
+template <class M>
+concept OwnSubstepLoop = requires {
+    &M::template substep_attempt<double>;
+};
+template <class M>
+concept HasConsistentStart = requires {
+    &M::template consistent_start<double>;
+};
+
+template <class M, class T>
+void attempt_substep(const typename M::Params& p, const IntegrationSettings& s,
+                     const simd::mask_t<T>& fixed, StateVec<T, M::n_state>& y, T& t, T& dt,
+                     const Sym<T>& deps, UpdateStats<T>& stats, const simd::mask_t<T>& active) {
+    if constexpr (OwnSubstepLoop<M>) {
+        M::template substep_attempt<T>(p, s, fixed, y, t, dt, deps, stats, active);
+    } else {
+        substep_attempt<M, T>(p, s, fixed, y, t, dt, deps, stats, active);
+    }
+}
+
+// SIMD path with lane refill, for models integrated attempt by attempt: a lane whose point
 // has finished its increment takes the next pending point at once, so a point that needs many
 // substeps holds up only its own lane, not the whole batch. Each point's arithmetic is the same
 // as in material_update(), so the result does not depend on which lane or when it ran.
@@ -97,6 +122,7 @@ void update_range_refill(MaterialPoints<M>& mp, const typename M::Params& params
     const IntegrationSettings& s = opt.settings;
     alignas(64) double y[N][W], y0[N][W], de[6][W];
     alignas(64) double t[W], dt[W], fixed[W], st[W], sub[W], rej[W], rate[W], ideal[W];
+    alignas(64) double fresh[W] = {}; // loaded since the last to_batches
     bool input_ok[W];
     std::size_t idx[W];
     bool busy[W];
@@ -123,6 +149,7 @@ void update_range_refill(MaterialPoints<M>& mp, const typename M::Params& params
         }
         const SubstepControl<double> c{mp.fixed_substeps()[i], opt.initial_substep};
         substep_begin<M, double>(s, c, ys, dd, t[l], dt[l]);
+        fresh[l] = 1.0;
         fixed[l] = c.fixed_substeps;
         st[l] = stats.status;
         sub[l] = rej[l] = rate[l] = ideal[l] = 0.0;
@@ -193,6 +220,15 @@ void update_range_refill(MaterialPoints<M>& mp, const typename M::Params& params
         fixedb = B::load_aligned(fixed) > 0.5;
         stats = UpdateStats<B>{B::load_aligned(st), B::load_aligned(sub), B::load_aligned(rej),
                                B::load_aligned(rate), B::load_aligned(ideal)};
+        if constexpr (HasConsistentStart<M>) {
+            const simd::batch_mask start = B::load_aligned(fresh) > 0.5;
+            if (simd::any(start)) {
+                StateVec<B, N> consistent = yb;
+                M::template consistent_start<B>(params, s, consistent);
+                yb = select_state<B, N>(start, consistent, yb);
+            }
+        }
+        std::fill(fresh, fresh + W, 0.0);
     };
     auto to_arrays = [&] {
         for (int k = 0; k < N; ++k) {
@@ -214,7 +250,7 @@ void update_range_refill(MaterialPoints<M>& mp, const typename M::Params& params
         if (simd::none(active)) {
             break; // every lane idle: no point pending
         }
-        substep_attempt<M, B>(params, s, fixedb, yb, tb, dtb, deb, stats, active);
+        attempt_substep<M, B>(params, s, fixedb, yb, tb, dtb, deb, stats, active);
         attempts_b = attempts_b + simd::select(active, B(1.0), B(0.0));
         const simd::batch_mask finished =
             active && (((B(1.0) - tb) <= 1.0e-12) || (attempts_b >= double(s.max_substeps)));
@@ -253,7 +289,7 @@ UpdateReport batched_update(MaterialPoints<M>& mp, const typename M::Params& par
     const std::size_t chunk = ((opt.chunk_points + lanes - 1) / lanes) * lanes;
     for_chunks(P, chunk, [&](std::size_t b, std::size_t e) {
         if (opt.simd) {
-            if constexpr (M::explicit_stepper) {
+            if constexpr (M::lane_refill) {
                 detail::update_range_refill<M>(mp, params, opt, b, e);
             } else {
                 detail::update_range<M, simd::batch>(mp, params, opt, b, e);

@@ -47,8 +47,9 @@ struct Hypoplasticity {
     static constexpr int n_state = 14;
     static constexpr int h_index = 7;
     static constexpr int substep_index = 13;
-    // Integrated by integrate_explicit: the engine may refill finished SIMD lanes.
-    static constexpr bool explicit_stepper = true;
+    // Integrated by integrate_explicit, attempt by attempt: the engine refills finished SIMD
+    // lanes.
+    static constexpr bool lane_refill = true;
 
     // The Matsuoka-Nakai value I1 I2 / I3 of a compressive stress and its value on the model's
     // limit surface, that of kappa*phi_c (von Wolffersdorff's critical states lie on it). A

@@ -16,8 +16,8 @@ struct LinearElasticParams {
 struct LinearElastic {
     static constexpr const char* name = "linear-elastic";
     static constexpr int n_state = 7;
-    // Integrated by integrate_explicit: the engine may refill finished SIMD lanes.
-    static constexpr bool explicit_stepper = false;
+    // One closed-form step: no substeps, nothing to refill.
+    static constexpr bool lane_refill = false;
     static constexpr bool pressure_floor = false;
     using Params = LinearElasticParams;
     template <class T>

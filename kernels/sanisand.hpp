@@ -26,8 +26,11 @@ struct Sanisand {
     static constexpr int alpha_index = sanisand::alpha_index;
     static constexpr int z_index = sanisand::z_index;
     static constexpr int alpha_in_index = sanisand::alpha_in_index;
-    // Integrated by integrate_explicit: the engine may refill finished SIMD lanes.
-    static constexpr bool explicit_stepper = false;
+    // Integrated attempt by attempt (consistent_start, substep_attempt), so the engine could
+    // refill finished SIMD lanes; it does not: with ~1 substep per update the refill's per-lane
+    // load, prepare and finish of 25 state entries cost more than the idle lanes (-21 % at
+    // 1e-4 increments, -60 % at 1e-5, +24 % at 1e-3; docs/performance.md, SanisandPaths).
+    static constexpr bool lane_refill = false;
     static constexpr bool pressure_floor = true;
     using Params = SanisandParams;
     template <class T>
@@ -185,120 +188,132 @@ struct Sanisand {
         return best;
     }
 
+    // Before the first attempt: a start outside the cone (e.g. after the pressure floor
+    // replaced the stress) is made consistent by moving alpha onto it. With substep_attempt,
+    // what the engine's lane refill calls (engine/batched_update.hpp).
+    template <class T>
+    static void consistent_start(const Params& P, const IntegrationSettings& s, State<T>& y) {
+        sanisand::remove_traces(y);
+        sanisand::project_onto_cone(P, s, y, sanisand::yield_ratio(P, s, y) > 0.0);
+    }
+
+    // One substep attempt for every active lane (elastic, crossing or loading, with error
+    // control); returns the lanes still active afterwards.
+    template <class T>
+    static simd::mask_t<T> substep_attempt(const Params& P, const IntegrationSettings& s,
+                                           const simd::mask_t<T>& fixed, State<T>& y, T& t, T& dt,
+                                           const Sym<T>& deps, UpdateStats<T>& stats,
+                                           const simd::mask_t<T>& active) {
+        using Mask = simd::mask_t<T>;
+        const Sym<T> deps_c = voigt::scale(deps, T(-1.0));
+        T dtl = simd::select(active, simd::min(dt, T(1.0) - t), T(0.0));
+
+        // Loading test at the start of the substep: on the cone and the elastic trial
+        // pointing out of it (positive numerator, as the notes advise).
+        const sanisand::Point<T> q = sanisand::point(P, s, y);
+        const Mask on_cone =
+            active && (q.f >= -yield_tolerance) && (q.distance > sanisand::axis_tolerance);
+        Mask loading(false);
+        if (simd::any(on_cone)) {
+            const sanisand::Plastic<T> k = sanisand::plastic(P, q, y);
+            loading = on_cone && (sanisand::loading_numerator(q, k, deps_c) > 0.0);
+            // New loading process: reset alpha_in when (alpha - alpha_in):n < 0.
+            const Sym<T> a_in = sym_at(y, alpha_in_index);
+            const Mask reversal = loading && (voigt::ddot(voigt::sub(q.alpha, a_in), q.n) < 0.0);
+            set_sym_at(y, alpha_in_index, voigt::select(reversal, q.alpha, a_in));
+        }
+
+        // Loading substeps resolve the narrow cone (see cone_substep_fraction).
+        {
+            const T dr = 2.0 * q.G * voigt::norm(voigt::deviator(deps)) / q.p;
+            const T cap =
+                cone_substep_fraction * sanisand::sqrt_2_3 * P.m / simd::max(dr, T(1.0e-300));
+            dtl = simd::select(loading && !fixed, simd::min(dtl, simd::max(cap, T(s.min_substep))),
+                               dtl);
+        }
+        Sym<T> de = voigt::scale(deps, dtl);
+        Trial<T> tr = heun_step(P, s, y, de, loading);
+        stats.rate_evaluations += simd::select(active, T(2.0), T(0.0));
+
+        // Elastic substeps that leave the cone end at the crossing point instead.
+        const Mask crossing = active && !loading && (tr.f > yield_tolerance);
+        if (simd::any(crossing)) {
+            T beta(1.0);
+            const Trial<T> cut = elastic_crossing(P, s, y, de, crossing, tr, beta, stats);
+            tr = select_trial(crossing, cut, tr);
+            dtl = simd::select(crossing, beta * dtl, dtl);
+        }
+
+        // A lane that starts at the pressure floor (liquefied, e.g. after a cut-off) keeps
+        // integrating with p held at the floor, so its stress ratio, alpha and fabric can
+        // evolve until dilation lifts p again; otherwise it would stay stuck at the floor.
+        // Under volumetric extension a lane at the floor stays in the cut-off state instead:
+        // with s fixed and p -> 0 the ratio would grow without bound.
+        const T extension = voigt::trace(de) - 0.1 * voigt::norm(voigt::deviator(de));
+        const Mask at_floor =
+            active && (extension <= 0.0) && (mean_pressure(stress_of(y)) <= 2.0 * s.min_pressure);
+        if (simd::any(at_floor)) {
+            const Mask cE = at_floor && (mean_pressure(stress_of(tr.yE)) < s.min_pressure);
+            const Mask cH = at_floor && (mean_pressure(stress_of(tr.yH)) < s.min_pressure);
+            tr.yE = select_state<T, n_state>(cE, hold_at_floor(s, tr.yE), tr.yE);
+            tr.yH = select_state<T, n_state>(cH, hold_at_floor(s, tr.yH), tr.yH);
+            tr.f = sanisand::yield_ratio(P, s, tr.yH);
+            stats.status = simd::select(
+                cE || cH, simd::min(stats.status, T(lane_status::unreliable)), stats.status);
+        }
+        const Mask valid = admissible(P, s, tr.yE) && admissible(P, s, tr.yH);
+        T err = local_error(P, tr.yE, tr.yH);
+        err = simd::select(simd::isfinite(err), err, T(1.0e30));
+        // As in integrate_explicit: an admissible substep of the smallest size is taken even
+        // when it misses the tolerance (the capped h right after a reversal is not smooth), and
+        // the lane is flagged unreliable rather than cut off.
+        const Mask accurate = fixed || (err <= s.tolerance);
+        const Mask forced = active && valid && !accurate && (dtl <= s.min_substep);
+        const Mask accept = active && valid && (accurate || forced);
+        stats.status =
+            simd::select(forced, simd::min(stats.status, T(lane_status::unreliable)), stats.status);
+
+        // Drift correction: plastic substeps, crossings and any overshoot end on f = 0.
+        sanisand::remove_traces(tr.yH);
+        sanisand::project_onto_cone(P, s, tr.yH, loading || crossing || (tr.f > 0.0));
+        y = select_state<T, n_state>(accept, tr.yH, y);
+        t = simd::select(accept, t + dtl, t);
+        stats.substeps += simd::select(accept, T(1.0), T(0.0));
+        stats.rejected += simd::select(active && !accept, T(1.0), T(0.0));
+
+        // No admissible substep even at the smallest size: defined cut-off state.
+        const Mask stuck = active && !accept && ((dtl <= s.min_substep) || fixed);
+        if (simd::any(stuck)) {
+            const State<T> yc = cut_off(P, s, y, voigt::scale(deps, T(1.0) - t));
+            y = select_state<T, n_state>(stuck, yc, y);
+            t = simd::select(stuck, T(1.0), t);
+            stats.status = simd::select(stuck, simd::min(stats.status, T(lane_status::unreliable)),
+                                        stats.status);
+        }
+
+        const T qf = 0.9 * simd::sqrt(s.tolerance / simd::max(err, T(1.0e-30)));
+        const T grow = simd::min(T(s.max_step_growth), simd::max(T(s.min_step_shrink), qf));
+        const T shrink =
+            simd::select(valid, simd::max(T(s.min_step_shrink), simd::min(qf, T(0.5))), T(0.25));
+        // after a crossing the next substep starts from the size planned before it
+        T next = simd::select(accept, simd::select(crossing, dt, dtl * grow), dtl * shrink);
+        next = simd::max(next, T(s.min_substep));
+        dt = simd::select(active && !fixed, next, dt);
+        return active && ((T(1.0) - t) > 1.0e-12);
+    }
+
     template <class T>
     static void integrate(const Params& P, const IntegrationSettings& s,
                           const SubstepControl<T>& control, State<T>& y, const Sym<T>& deps,
                           UpdateStats<T>& stats) {
         using Mask = simd::mask_t<T>;
-        // A start outside the cone (e.g. after the pressure floor replaced the stress) is made
-        // consistent by moving alpha onto it.
-        sanisand::remove_traces(y);
-        sanisand::project_onto_cone(P, s, y, sanisand::yield_ratio(P, s, y) > 0.0);
-
         const Mask fixed = control.fixed_substeps > 0.5;
-        T t(0.0);
-        T dt =
-            simd::select(fixed, 1.0 / simd::max(control.fixed_substeps, T(1.0)),
-                         simd::min(simd::max(control.initial_substep, T(s.min_substep)), T(1.0)));
+        consistent_start(P, s, y);
+        T t, dt;
+        substep_begin<Sanisand, T>(s, control, y, deps, t, dt);
         Mask active = (T(1.0) - t) > 1.0e-12;
-        const Sym<T> deps_c = voigt::scale(deps, T(-1.0));
-
         for (int attempts = 0; simd::any(active) && attempts < s.max_substeps; ++attempts) {
-            T dtl = simd::select(active, simd::min(dt, T(1.0) - t), T(0.0));
-
-            // Loading test at the start of the substep: on the cone and the elastic trial
-            // pointing out of it (positive numerator, as the notes advise).
-            const sanisand::Point<T> q = sanisand::point(P, s, y);
-            const Mask on_cone =
-                active && (q.f >= -yield_tolerance) && (q.distance > sanisand::axis_tolerance);
-            Mask loading(false);
-            if (simd::any(on_cone)) {
-                const sanisand::Plastic<T> k = sanisand::plastic(P, q, y);
-                loading = on_cone && (sanisand::loading_numerator(q, k, deps_c) > 0.0);
-                // New loading process: reset alpha_in when (alpha - alpha_in):n < 0.
-                const Sym<T> a_in = sym_at(y, alpha_in_index);
-                const Mask reversal =
-                    loading && (voigt::ddot(voigt::sub(q.alpha, a_in), q.n) < 0.0);
-                set_sym_at(y, alpha_in_index, voigt::select(reversal, q.alpha, a_in));
-            }
-
-            // Loading substeps resolve the narrow cone (see cone_substep_fraction).
-            {
-                const T dr = 2.0 * q.G * voigt::norm(voigt::deviator(deps)) / q.p;
-                const T cap =
-                    cone_substep_fraction * sanisand::sqrt_2_3 * P.m / simd::max(dr, T(1.0e-300));
-                dtl = simd::select(loading && !fixed,
-                                   simd::min(dtl, simd::max(cap, T(s.min_substep))), dtl);
-            }
-            Sym<T> de = voigt::scale(deps, dtl);
-            Trial<T> tr = heun_step(P, s, y, de, loading);
-            stats.rate_evaluations += simd::select(active, T(2.0), T(0.0));
-
-            // Elastic substeps that leave the cone end at the crossing point instead.
-            const Mask crossing = active && !loading && (tr.f > yield_tolerance);
-            if (simd::any(crossing)) {
-                T beta(1.0);
-                const Trial<T> cut = elastic_crossing(P, s, y, de, crossing, tr, beta, stats);
-                tr = select_trial(crossing, cut, tr);
-                dtl = simd::select(crossing, beta * dtl, dtl);
-            }
-
-            // A lane that starts at the pressure floor (liquefied, e.g. after a cut-off) keeps
-            // integrating with p held at the floor, so its stress ratio, alpha and fabric can
-            // evolve until dilation lifts p again; otherwise it would stay stuck at the floor.
-            // Under volumetric extension a lane at the floor stays in the cut-off state instead:
-            // with s fixed and p -> 0 the ratio would grow without bound.
-            const T extension = voigt::trace(de) - 0.1 * voigt::norm(voigt::deviator(de));
-            const Mask at_floor = active && (extension <= 0.0) &&
-                                  (mean_pressure(stress_of(y)) <= 2.0 * s.min_pressure);
-            if (simd::any(at_floor)) {
-                const Mask cE = at_floor && (mean_pressure(stress_of(tr.yE)) < s.min_pressure);
-                const Mask cH = at_floor && (mean_pressure(stress_of(tr.yH)) < s.min_pressure);
-                tr.yE = select_state<T, n_state>(cE, hold_at_floor(s, tr.yE), tr.yE);
-                tr.yH = select_state<T, n_state>(cH, hold_at_floor(s, tr.yH), tr.yH);
-                tr.f = sanisand::yield_ratio(P, s, tr.yH);
-                stats.status = simd::select(
-                    cE || cH, simd::min(stats.status, T(lane_status::unreliable)), stats.status);
-            }
-            const Mask valid = admissible(P, s, tr.yE) && admissible(P, s, tr.yH);
-            T err = local_error(P, tr.yE, tr.yH);
-            err = simd::select(simd::isfinite(err), err, T(1.0e30));
-            // As in integrate_explicit: an admissible substep of the smallest size is taken even
-            // when it misses the tolerance (the capped h right after a reversal is not smooth), and
-            // the lane is flagged unreliable rather than cut off.
-            const Mask accurate = fixed || (err <= s.tolerance);
-            const Mask forced = active && valid && !accurate && (dtl <= s.min_substep);
-            const Mask accept = active && valid && (accurate || forced);
-            stats.status = simd::select(forced, simd::min(stats.status, T(lane_status::unreliable)),
-                                        stats.status);
-
-            // Drift correction: plastic substeps, crossings and any overshoot end on f = 0.
-            sanisand::remove_traces(tr.yH);
-            sanisand::project_onto_cone(P, s, tr.yH, loading || crossing || (tr.f > 0.0));
-            y = select_state<T, n_state>(accept, tr.yH, y);
-            t = simd::select(accept, t + dtl, t);
-            stats.substeps += simd::select(accept, T(1.0), T(0.0));
-            stats.rejected += simd::select(active && !accept, T(1.0), T(0.0));
-
-            // No admissible substep even at the smallest size: defined cut-off state.
-            const Mask stuck = active && !accept && ((dtl <= s.min_substep) || fixed);
-            if (simd::any(stuck)) {
-                const State<T> yc = cut_off(P, s, y, voigt::scale(deps, T(1.0) - t));
-                y = select_state<T, n_state>(stuck, yc, y);
-                t = simd::select(stuck, T(1.0), t);
-                stats.status = simd::select(
-                    stuck, simd::min(stats.status, T(lane_status::unreliable)), stats.status);
-            }
-
-            const T qf = 0.9 * simd::sqrt(s.tolerance / simd::max(err, T(1.0e-30)));
-            const T grow = simd::min(T(s.max_step_growth), simd::max(T(s.min_step_shrink), qf));
-            const T shrink = simd::select(
-                valid, simd::max(T(s.min_step_shrink), simd::min(qf, T(0.5))), T(0.25));
-            // after a crossing the next substep starts from the size planned before it
-            T next = simd::select(accept, simd::select(crossing, dt, dtl * grow), dtl * shrink);
-            next = simd::max(next, T(s.min_substep));
-            dt = simd::select(active && !fixed, next, dt);
-            active = (T(1.0) - t) > 1.0e-12;
+            active = substep_attempt(P, s, fixed, y, t, dt, deps, stats, active);
         }
         // Runaway: not finished within max_substeps attempts.
         stats.status = simd::select(active, T(lane_status::failed), stats.status);
