@@ -138,14 +138,10 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     out.formulation = read_interface_formulation(t);
     const InterfaceFormulationSpec& f = out.formulation;
     if (f.is_coulomb()) {
-        // The inner-solve keys tune Algorithm 1 of the continuum formulations.
-        for (const char* key : {"model_tolerance", "newton_jacobian", "jacobian_tolerance",
-                                "polish_iterations", "adaptive_partition"}) {
-            if (t.has(key)) {
-                t.fail(key, "applies to formulations \"novel\" and \"stutz\" only; expected no "
-                            "such key for formulation \"coulomb\"");
-            }
-        }
+        constexpr std::string_view algorithm1_keys[] = {"model_tolerance", "newton_jacobian",
+                                                        "jacobian_tolerance", "polish_iterations",
+                                                        "adaptive_partition"};
+        t.reject(algorithm1_keys, algorithm1_key_with_coulomb);
         pair.options.interface.formulation = InterfaceFormulation::coulomb;
         pair.friction = f.coulomb;
         return out;

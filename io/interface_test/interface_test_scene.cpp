@@ -24,15 +24,6 @@ constexpr std::string_view algorithm1_keys[] = {"interface_newton_jacobian",
                                                 "band_collapse",
                                                 "min_band_fraction"};
 
-template <std::size_t N>
-void reject_keys(const TableReader& t, const std::string_view (&keys)[N], const std::string& why) {
-    for (const auto& key : keys) {
-        if (t.has(key)) {
-            t.fail(key, why);
-        }
-    }
-}
-
 struct SampleStart {
     Six stress{};
     double void_ratio = 0.0;
@@ -169,9 +160,7 @@ void read_integration(const TableReader& root, InterfaceTestScene& scene) {
     spec.max_step_substeps =
         t.number_or("max_step_substeps", spec.max_step_substeps, Bounds::positive());
     if (scene.coulomb()) {
-        reject_keys(t, algorithm1_keys,
-                    "tunes Algorithm 1 of the continuum formulations; expected no such key for "
-                    "formulation \"coulomb\"");
+        t.reject(algorithm1_keys, algorithm1_key_with_coulomb);
         return;
     }
     InterfaceSettings& s = spec.contact.interface;

@@ -28,15 +28,6 @@ constexpr std::string_view continuum_keys[] = {"model",
                                                "fabric"};
 constexpr std::string_view coulomb_keys[] = {"friction_coefficient", "tangential_stiffness"};
 
-template <std::size_t N>
-void reject_keys(const TableReader& t, const std::string_view (&keys)[N], const std::string& why) {
-    for (const auto& key : keys) {
-        if (t.has(key)) {
-            t.fail(key, why);
-        }
-    }
-}
-
 constexpr std::array<std::pair<InterfaceFormulation, std::string_view>, 3> names{
     {{InterfaceFormulation::novel, "novel"},
      {InterfaceFormulation::stutz, "stutz"},
@@ -44,10 +35,10 @@ constexpr std::array<std::pair<InterfaceFormulation, std::string_view>, 3> names
 
 void read_continuum(const TableReader& t, InterfaceFormulationSpec& spec) {
     const std::string f = spec.name();
-    reject_keys(t, coulomb_keys,
-                fmt::format("applies to formulation \"coulomb\" only; expected no such key for "
-                            "formulation \"{}\"",
-                            f));
+    t.reject(coulomb_keys,
+             fmt::format("applies to formulation \"coulomb\" only; expected no such key for "
+                         "formulation \"{}\"",
+                         f));
     if (f == "novel" && t.has("stutz_initial_stress")) {
         t.fail("stutz_initial_stress", "applies to formulation \"stutz\" only; expected no such "
                                        "key for formulation \"novel\" (its in-plane stresses "
@@ -85,10 +76,10 @@ void read_continuum(const TableReader& t, InterfaceFormulationSpec& spec) {
 }
 
 void read_coulomb(const TableReader& t, InterfaceFormulationSpec& spec) {
-    reject_keys(t, continuum_keys,
-                "applies to formulations \"novel\" and \"stutz\" only; expected no such key for "
-                "formulation \"coulomb\" (friction_coefficient and tangential_stiffness "
-                "describe it)");
+    t.reject(continuum_keys,
+             "applies to formulations \"novel\" and \"stutz\" only; expected no such key for "
+             "formulation \"coulomb\" (friction_coefficient and tangential_stiffness "
+             "describe it)");
     CoulombParams& p = spec.coulomb;
     p.friction_coefficient =
         t.number_or("friction_coefficient", p.friction_coefficient, Bounds::non_negative());

@@ -39,4 +39,10 @@ std::string_view formulation_name(InterfaceFormulation f);
 // Throws SceneError naming the file and key.
 InterfaceFormulationSpec read_interface_formulation(const TableReader& t);
 
+// Why a key that tunes Algorithm 1 (the inner solves of the continuum formulations) is an error
+// with Coulomb friction: the interface test's [integration] and a boundary-value pair alike.
+inline const std::string algorithm1_key_with_coulomb =
+    "tunes Algorithm 1 of the continuum formulations \"novel\" and \"stutz\"; expected no "
+    "such key for formulation \"coulomb\"";
+
 } // namespace ifsim::io

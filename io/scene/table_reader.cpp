@@ -63,6 +63,14 @@ bool TableReader::has(std::string_view key) const {
     return table_->contains(key);
 }
 
+void TableReader::reject(std::span<const std::string_view> keys, const std::string& why) const {
+    for (const std::string_view key : keys) {
+        if (has(key)) {
+            fail(key, why);
+        }
+    }
+}
+
 const toml::node* TableReader::find(std::string_view key) const {
     return table_->get(key);
 }

@@ -50,6 +50,9 @@ public:
 
     bool has(std::string_view key) const;
     const toml::node* find(std::string_view key) const;
+    // Throws for the first of `keys` the table has, with `why` as the expected value (keys that
+    // belong to another choice, e.g. another interface formulation).
+    void reject(std::span<const std::string_view> keys, const std::string& why) const;
 
     double number(std::string_view key, const Bounds& bounds = Bounds::any()) const;
     double number_or(std::string_view key, double fallback,
