@@ -75,8 +75,10 @@ void BM_update(benchmark::State& state) {
 }
 
 // Sanisand's three paths on the same points, one thread: path 0 scalar, 1 SIMD batch by batch
-// (a batch runs until its slowest lane is done; the path before lane refill), 2 SIMD with lane
-// refill (what batched_update runs). Increment norm 10^-exponent.
+// (a batch runs until its slowest lane is done; what batched_update runs for Sanisand), 2 SIMD
+// with lane refill (what batched_update runs for models with lane_refill; measured and not
+// adopted for Sanisand, docs/performance.md). One range, no 256-point chunks. Increment norm
+// 10^-exponent.
 void BM_sanisand_paths(benchmark::State& state) {
     const auto points = static_cast<std::size_t>(state.range(0));
     const long path = state.range(1);

@@ -116,6 +116,11 @@ void attempt_substep(const typename M::Params& p, const IntegrationSettings& s,
 template <class M>
 void update_range_refill(MaterialPoints<M>& mp, const typename M::Params& params,
                          const UpdateOptions& opt, std::size_t begin, std::size_t end) {
+    // A start made consistent belongs to the model's own loop; the generic attempt knows none.
+    static_assert(!HasConsistentStart<M> || OwnSubstepLoop<M>);
+    // substep_begin runs before consistent_start here (in load_lane), after it in Sanisand's
+    // integrate: the same only because the first substep does not depend on the state.
+    static_assert(!HasConsistentStart<M> || !CarriesSubstep<M>);
     constexpr int N = M::n_state;
     constexpr std::size_t W = simd::lanes;
     using B = simd::batch;

@@ -28,8 +28,9 @@ struct Sanisand {
     static constexpr int alpha_in_index = sanisand::alpha_in_index;
     // Integrated attempt by attempt (consistent_start, substep_attempt), so the engine could
     // refill finished SIMD lanes; it does not: with ~1 substep per update the refill's per-lane
-    // load, prepare and finish of 25 state entries cost more than the idle lanes (-21 % at
-    // 1e-4 increments, -60 % at 1e-5, +24 % at 1e-3; docs/performance.md, SanisandPaths).
+    // load, prepare and finish of 25 state entries cost more than the idle lanes (refill/masked
+    // 0.79 at 1e-4 increments, 0.40 at 1e-5; 1.24 at 1e-3, where points take many substeps;
+    // docs/performance.md, SanisandPaths).
     static constexpr bool lane_refill = false;
     static constexpr bool pressure_floor = true;
     using Params = SanisandParams;

@@ -89,24 +89,56 @@ TEST(BatchedUpdate, ScalarAndSimdPathsAgree) {
 
 // Sanisand's own substep loop run with lane refill (a finished lane takes the next point; the
 // engine's choice for it is the masked path, see Sanisand::lane_refill): bitwise the same as the
-// batch-by-batch masked path.
+// batch-by-batch masked path, in every stat, also for the starts the refill treats specially: a
+// back-stress off the cone (consistent_start acts), a stress below the pressure floor, a NaN
+// increment (restored, failed), fixed substeps, and lanes that run out of max_substeps.
 TEST(BatchedUpdate, SanisandLaneRefillEqualsTheMaskedBatchPath) {
     const auto P = karlsruhe_sanisand();
     const std::size_t n = 203;
-    MaterialPoints<Sanisand> refill(n), masked(n);
-    fill_samples(refill, P, large_increments);
-    fill_samples(masked, P, large_increments);
-    UpdateOptions opt;
-    detail::update_range_refill<Sanisand>(refill, P, opt, 0, refill.padded());
-    detail::update_range<Sanisand, simd::batch>(masked, P, opt, 0, masked.padded());
-    const auto a = trial_states(refill);
-    const auto b = trial_states(masked);
-    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0);
+    auto prepare = [&](MaterialPoints<Sanisand>& mp) {
+        fill_samples(mp, P, large_increments);
+        for (std::size_t i : {3u, 50u, 101u}) { // alpha far off the sample's stress ratio
+            auto y = mp.state(i);
+            set_sym_at(y, Sanisand::alpha_index, Sym<double>{0.3, -0.1, -0.2, 0.15, 0.0, 0.05});
+            mp.set_state(i, y);
+        }
+        for (std::size_t i : {10u, 77u}) { // below the pressure floor
+            auto y = mp.state(i);
+            set_stress(y, Sym<double>{-1e-4, -2e-4, -1e-4, 0.0, 0.0, 0.0});
+            mp.set_state(i, y);
+        }
+        mp.set_deps(20, Sym<double>{std::nan(""), 0.0, 0.0, 0.0, 0.0, 0.0});
+        for (std::size_t i = 30; i < 46; ++i) {
+            mp.fixed_substeps()[i] = 4.0;
+        }
+    };
     double substeps = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-        EXPECT_EQ(refill.substeps()[i], masked.substeps()[i]) << "point " << i;
-        EXPECT_EQ(refill.status()[i], masked.status()[i]) << "point " << i;
-        substeps += refill.substeps()[i];
+    for (int max_substeps : {200000, 3}) {
+        MaterialPoints<Sanisand> refill(n), masked(n);
+        prepare(refill);
+        prepare(masked);
+        UpdateOptions opt;
+        opt.settings.max_substeps = max_substeps;
+        detail::update_range_refill<Sanisand>(refill, P, opt, 0, refill.padded());
+        detail::update_range<Sanisand, simd::batch>(masked, P, opt, 0, masked.padded());
+        const auto a = trial_states(refill);
+        const auto b = trial_states(masked);
+        EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0)
+            << "max_substeps " << max_substeps;
+        int failed = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            EXPECT_EQ(refill.status()[i], masked.status()[i]) << "point " << i;
+            EXPECT_EQ(refill.substeps()[i], masked.substeps()[i]) << "point " << i;
+            EXPECT_EQ(refill.rejected()[i], masked.rejected()[i]) << "point " << i;
+            EXPECT_EQ(refill.rate_evaluations()[i], masked.rate_evaluations()[i]) << "point " << i;
+            failed += refill.status()[i] < -0.5 ? 1 : 0;
+            substeps += max_substeps > 3 ? refill.substeps()[i] : 0.0;
+        }
+        EXPECT_EQ(refill.status()[20], lane_status::failed); // the NaN increment
+        EXPECT_LT(refill.status()[10], 0.5);                 // below the floor: reported, not ok
+        if (max_substeps == 3) {
+            EXPECT_GT(failed, 10); // lanes did run out
+        }
     }
     EXPECT_GT(substeps, 3.0 * n); // the points did substep, at different counts
 }

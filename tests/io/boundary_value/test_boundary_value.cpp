@@ -141,7 +141,9 @@ TEST(BoundaryValueScene, PolishIterationsKeyAndInnerSolveKeysRefusedWithCoulomb)
         test::expect_boundary_value_error(
             test::replaced(coulomb, "formulation = \"coulomb\"",
                            std::string("formulation = \"coulomb\"\n") + key),
-            "interface." + name, "formulation \"coulomb\"");
+            "interface." + name,
+            "tunes Algorithm 1 of the continuum formulations \"novel\" and \"stutz\"; expected no "
+            "such key for formulation \"coulomb\"");
     }
 }
 

@@ -404,8 +404,11 @@ TEST(InterfaceScene, KeysOfAnotherFormulationOrModelAreErrors) {
         expect_error(with_in(coulomb, "interface", line), "interface." + key,
                      "applies to formulations \"novel\" and \"stutz\" only");
     }
+    // the same wording as a boundary-value pair's (algorithm1_key_with_coulomb)
     expect_error(coulomb + "[integration]\npolish_iterations = 2\n",
-                 "integration.polish_iterations", "formulation \"coulomb\"");
+                 "integration.polish_iterations",
+                 "tunes Algorithm 1 of the continuum formulations \"novel\" and \"stutz\"; "
+                 "expected no such key for formulation \"coulomb\"");
     expect_error(with_in(minimal, "interface", "back_stress = [0.1, -0.05, -0.05, 0, 0, 0]"),
                  "interface.back_stress", "applies to sanisand only");
     expect_error(with_in(minimal, "interface",
