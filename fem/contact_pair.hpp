@@ -69,6 +69,14 @@ struct ContactPairSpec {
     // the step doubling's three (docs/fem.md, "Sub-increments held through an increment").
     bool hold_partition = true;
     double partition_regrowth = 1.5;
+    // Continuum: a viscous shear traction eta dg_T / dt on top of the band's (kPa per m of slip
+    // per nominal step, dt the increment's share of its nominal step; 0: off). A
+    // regularisation for a band past its peak under load control, where no equilibrium near
+    // the last one exists (docs/fem.md, "Slip viscosity"); not part of the paper's equations.
+    // By default only in increments that failed at the finest cut (the solver retries them
+    // with it, StaticSolver::stage_from); `slip_viscosity_always`: in every increment.
+    double slip_viscosity = 0.0;
+    bool slip_viscosity_always = false;
 
     bool coulomb() const { return options.interface.formulation == InterfaceFormulation::coulomb; }
 };
@@ -96,6 +104,12 @@ struct ContactPairCounters {
     // held only in part: an admissible jump of sigma_p, Eq. 13).
     long relaxed_reruns = 0;
     double relaxed_point_updates = 0.0;
+    // Slip viscosity: committed point updates whose viscous traction exceeded 1 % of the
+    // band's shear traction (or of 1 % of |t_N| where that is larger), the largest such share
+    // and the largest viscous traction (kPa).
+    double viscous_point_updates = 0.0;
+    double viscous_share_max = 0.0;
+    double viscous_traction_max = 0.0;
 };
 
 // Area-weighted means over the points in contact (committed state after commit()).
@@ -175,6 +189,15 @@ public:
     // The last evaluation is an iterate the Newton iteration goes on from: points that chose
     // their sub-increments in it hold that count for the rest of the increment.
     virtual void hold_chosen_partitions() {}
+    // The increment about to be solved as a share of its nominal step (1 uncut): the slip
+    // viscosity's time.
+    virtual void set_increment_length(double /*dt*/) {}
+    // Slip viscosity of the pairs that keep it for failed increments: on for a retry.
+    virtual void set_viscous_retry(bool /*on*/) {}
+    // The pair has a slip viscosity kept for failed increments.
+    bool viscous_fallback() const {
+        return spec().slip_viscosity > 0.0 && !spec().slip_viscosity_always;
+    }
 
     virtual ContactResultant resultant() const = 0;
     // Every point of the pair in the state of the last converged increment.

@@ -105,6 +105,8 @@ public:
 
     const ContactPairSpec& spec() const override { return spec_; }
     const MortarKinematics& kinematics() const override { return *kin_; }
+    void set_increment_length(double dt) override { increment_length_ = dt; }
+    void set_viscous_retry(bool on) override { viscous_retry_ = on; }
 
     bool begin_increment(const Mesh& mesh, const std::vector<double>& u,
                          const ElementStresses& stresses) override {
@@ -299,6 +301,51 @@ protected:
         }
     }
 
+    // Slip viscosity: tau_v = eta dg_T / dt added to point i's traction (kinematic axes) and
+    // its tangent, d dg_T,a / d u = -t_a (slave) and +t_a (master) (Eq. A13). Only where the
+    // point presses (t_N < 0): a separated point carries nothing. tau is conjugate to dg_T
+    // (fem/mortar_kinematics.hpp), so the viscous work tau_v . dg_T >= 0 is dissipated.
+    void add_slip_viscosity(std::size_t i) {
+        viscous_.resize(traction_.size());
+        viscous_[i] = {0.0, 0.0};
+        const ContactKinematics& k = kin_->point(i);
+        ContactTraction& t = traction_[i];
+        const bool on = spec_.slip_viscosity_always || viscous_retry_;
+        if (spec_.slip_viscosity <= 0.0 || !on || !k.active || !(t.t_N < 0.0)) {
+            return;
+        }
+        const double c = spec_.slip_viscosity / increment_length_;
+        for (std::size_t a = 0; a < 2; ++a) {
+            const std::array<double, 3>& ta = a == 0 ? k.t1 : k.t2;
+            viscous_[i][a] = c * k.dg_T[a];
+            t.tau[a] += viscous_[i][a];
+            for (int d = 0; d < dim_; ++d) {
+                const auto du = static_cast<std::size_t>(d);
+                t.jac[1 + a][du] -= c * ta[du];
+                t.jac[1 + a][static_cast<std::size_t>(dim_ + d)] += c * ta[du];
+            }
+        }
+    }
+
+    // At commit: how much of the committed shear the viscosity carried.
+    void count_slip_viscosity(ContactPairCounters& counters) const {
+        if (spec_.slip_viscosity <= 0.0) {
+            return;
+        }
+        for (std::size_t i = 0; i < viscous_.size() && i < traction_.size(); ++i) {
+            const ContactTraction& t = traction_[i];
+            const double v = std::hypot(viscous_[i][0], viscous_[i][1]);
+            if (v == 0.0) {
+                continue;
+            }
+            const double band = std::hypot(t.tau[0] - viscous_[i][0], t.tau[1] - viscous_[i][1]);
+            const double share = v / std::max(band, 0.01 * std::abs(t.t_N));
+            counters.viscous_traction_max = std::max(counters.viscous_traction_max, v);
+            counters.viscous_share_max = std::max(counters.viscous_share_max, share);
+            counters.viscous_point_updates += share > 0.01 ? 1.0 : 0.0;
+        }
+    }
+
     // Engine outputs (local traction, Jacobian columns) of point i into the kinematic frame.
     template <class Points>
     void take_traction(const Points& cp, std::size_t i) {
@@ -328,7 +375,10 @@ protected:
     std::vector<Voigt6> local_stress_;
     std::vector<double> gap_offset_;
     std::vector<ContactTraction> traction_;
-    std::vector<double> scratch_; // forces of add_tangent's assembly, discarded
+    std::vector<std::array<double, 2>> viscous_; // slip viscosity's share of traction_ (tau)
+    double increment_length_ = 1.0;              // the increment's share of its nominal step
+    bool viscous_retry_ = false;                 // the solver retries a failed increment
+    std::vector<double> scratch_;                // forces of add_tangent's assembly, discarded
 };
 
 } // namespace ifsim::fem::detail

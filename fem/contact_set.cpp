@@ -86,6 +86,9 @@ ContactSetCounters ContactSet::counters() const {
         s.failed_evaluations += k.failed_evaluations;
         s.relaxed_reruns += k.relaxed_reruns;
         s.relaxed_point_updates += k.relaxed_point_updates;
+        s.viscous_point_updates += k.viscous_point_updates;
+        s.viscous_share_max = std::max(s.viscous_share_max, k.viscous_share_max);
+        s.viscous_traction_max = std::max(s.viscous_traction_max, k.viscous_traction_max);
         s.band_clamped += k.band_clamped;
         s.dropped_columns += k.dropped_columns;
     }

@@ -4,6 +4,7 @@
 // increment, tangent entries, the implicit re-gather of the in-plane targets, commit, and the
 // pairs' counters and timers summed.
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <string>
@@ -60,6 +61,20 @@ public:
     // Points over all pairs whose held sub-increments were released (ContactPair).
     std::size_t release_outgrown_partitions();
     void hold_chosen_partitions();
+    void set_increment_length(double dt) {
+        for (auto& c : pairs_) {
+            c->set_increment_length(dt);
+        }
+    }
+    bool viscous_fallback() const {
+        return std::any_of(pairs_.begin(), pairs_.end(),
+                           [](const auto& c) { return c->viscous_fallback(); });
+    }
+    void set_viscous_retry(bool on) {
+        for (auto& c : pairs_) {
+            c->set_viscous_retry(on);
+        }
+    }
     void commit();
     void set_probing(bool on) {
         for (auto& c : pairs_) {

@@ -86,6 +86,7 @@ public:
         }
         for (std::size_t i = 0; i < kin_->n_points(); ++i) {
             take_traction(points_, i);
+            add_slip_viscosity(i);
         }
         kin_->assemble(traction_, f_int, nullptr);
         return true;
@@ -100,6 +101,7 @@ public:
         for (double l : relax_) {
             counters_.relaxed_point_updates += l < 1.0 ? 1.0 : 0.0;
         }
+        count_slip_viscosity(counters_);
     }
 
 protected:
@@ -235,6 +237,7 @@ protected:
         count(rep);
         for (std::size_t i = 0; i < kin_->n_points(); ++i) {
             take_traction(points_, i);
+            add_slip_viscosity(i);
         }
     }
 

@@ -40,6 +40,8 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
     }
     if (!contacts_.empty()) {
         begin_contacts(false);
+        // The slip viscosity's time: the increment's share of its nominal step.
+        contacts_.set_increment_length((t_end - t_begin) * std::max(1, stage_ ? stage_->steps : 1));
     }
     bool residual_current = false;
     first_guess(t_begin, t_end, residual_current);
@@ -332,8 +334,12 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
     // The step work bound applies inside the steps only, and ends with them.
     struct BudgetOff {
         StaticSolver& s;
-        ~BudgetOff() { s.budget_active_ = s.step_over_budget_ = false; }
+        ~BudgetOff() {
+            s.budget_active_ = s.step_over_budget_ = false;
+            s.contacts_.set_viscous_retry(false);
+        }
     } budget_off{*this};
+    bool viscous_retry = false; // the increment is being solved again with the slip viscosity
     for (int k = std::max(1, from.step); k <= steps; ++k) {
         // Automatic increment control inside the nominal step [t_a, t_step]: the increment is
         // halved on failure (up to max_cuts times) and doubled again after growth_after
@@ -361,6 +367,11 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
             std::string error;
             if (solve_increment(t_a, t_b, info, error, on_iteration)) {
                 commit_increment(t_b - t_a);
+                if (viscous_retry) {
+                    ++counters_.viscous_increments;
+                    viscous_retry = false;
+                    contacts_.set_viscous_retry(false);
+                }
                 ++result.increments;
                 counters_.worst_accepted_residual =
                     std::max(counters_.worst_accepted_residual, info.residuals.back());
@@ -393,12 +404,22 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
                                             stage_count_, stage.name, k, steps, t_a, t_b, error);
                 return result;
             }
+            if (depth >= max_cuts && !viscous_retry && contacts_.viscous_fallback()) {
+                // No equilibrium near the last one even at the finest increment: a band past
+                // its peak under load control (docs/fem.md, "Slip viscosity"). Once more with
+                // the pairs' slip viscosity, for this increment only.
+                viscous_retry = true;
+                contacts_.set_viscous_retry(true);
+                dt_last_ = 0.0;
+                continue;
+            }
             if (depth >= max_cuts) {
                 result.ok = false;
                 result.reason = fmt::format(
                     "stage {} ('{}'), step {} of {}, pseudo-time {:.6g} to {:.6g}: {} (after "
-                    "halving the step {} times)",
-                    stage_count_, stage.name, k, steps, t_a, t_b, error, depth);
+                    "halving the step {} times{})",
+                    stage_count_, stage.name, k, steps, t_a, t_b, error, depth,
+                    viscous_retry ? ", the last time with the slip viscosity" : "");
                 return result;
             }
             ++counters_.cuts;

@@ -76,6 +76,10 @@ struct SolverCounters {
     long partition_releases = 0;      // contact points whose held sub-increments were released
     long contact_relaxed_reruns = 0;  // see ContactPairCounters
     double contact_relaxed_point_updates = 0.0;
+    long viscous_increments = 0; // increments committed on a retry with the slip viscosity
+    double contact_viscous_point_updates = 0.0; // slip viscosity (ContactPairCounters)
+    double contact_viscous_share_max = 0.0;
+    double contact_viscous_traction_max = 0.0;
     long contact_band_clamped = 0;      // point evaluations on a clamped band (clamp_band = true)
     double contact_dropped_lanes = 0.0; // failed Jacobian lanes (the point took Eq. B3's columns)
     LinearSolverCounters linear;

@@ -56,6 +56,9 @@ const SolverCounters& StaticSolver::counters() const {
     counters_.contact_failures = c.failed_evaluations;
     counters_.contact_relaxed_reruns = c.relaxed_reruns;
     counters_.contact_relaxed_point_updates = c.relaxed_point_updates;
+    counters_.contact_viscous_point_updates = c.viscous_point_updates;
+    counters_.contact_viscous_share_max = c.viscous_share_max;
+    counters_.contact_viscous_traction_max = c.viscous_traction_max;
     counters_.contact_band_clamped = c.band_clamped;
     counters_.contact_dropped_lanes = c.dropped_columns;
     return counters_;

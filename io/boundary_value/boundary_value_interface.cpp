@@ -98,7 +98,9 @@ const std::vector<std::string_view>& boundary_value_interface_keys() {
                                                        "newton_jacobian",
                                                        "jacobian_tolerance",
                                                        "polish_iterations",
-                                                       "adaptive_partition"};
+                                                       "adaptive_partition",
+                                                       "slip_viscosity",
+                                                       "slip_viscosity_use"};
     return keys;
 }
 
@@ -142,6 +144,10 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
                                                         "jacobian_tolerance", "polish_iterations",
                                                         "adaptive_partition"};
         t.reject(algorithm1_keys, algorithm1_key_with_coulomb);
+        constexpr std::string_view viscosity_key[] = {"slip_viscosity", "slip_viscosity_use"};
+        t.reject(viscosity_key, "regularises a continuum interface band past its peak; "
+                                "expected no such key for formulation \"coulomb\" (its "
+                                "friction does not soften)");
         pair.options.interface.formulation = InterfaceFormulation::coulomb;
         pair.friction = f.coulomb;
         return out;
@@ -169,6 +175,11 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     // each (docs/fem.md).
     pair.hold_partition =
         t.choice_or("adaptive_partition", "increment", {"increment", "iteration"}) == "increment";
+    // A viscous shear traction for bands past their peak under load control (docs/fem.md).
+    pair.slip_viscosity =
+        t.number_or("slip_viscosity", pair.slip_viscosity, Bounds::closed_open(0.0, 1.0e12));
+    pair.slip_viscosity_always =
+        t.choice_or("slip_viscosity_use", "retry", {"retry", "always"}) == "always";
     pair.initial_state = state_function(t, f.material, f.stress_start, soil.void_ratio);
     // Check the state keys now, with the slave body's initial stress.
     pair.initial_state(vertical_local(soil.stress, mesh.dim()));

@@ -56,6 +56,10 @@ nlohmann::ordered_json pair_details(const BoundaryValueInterface& bi) {
             j["adaptive_partition"] = bi.pair.hold_partition ? "increment" : "iteration";
         }
         j["jacobian"] = bi.formulation.jacobian;
+        if (bi.pair.slip_viscosity > 0.0) {
+            j["slip_viscosity"] = bi.pair.slip_viscosity;
+            j["slip_viscosity_use"] = bi.pair.slip_viscosity_always ? "always" : "retry";
+        }
         if (bi.formulation.formulation == InterfaceFormulation::stutz) {
             j["stutz_initial_stress"] = bi.formulation.stutz_initial_stress;
         }
@@ -311,6 +315,7 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     k["constitutive_evaluations"] =
         c.constitutive_evaluations + rounded(c.contact_constitutive_evaluations);
     k["cuts"] = c.cuts;
+    k["viscous_increments"] = c.viscous_increments;
     k["increment_growths"] = c.increment_growths;
     k["predictor_solves"] = c.predictor_solves;
     k["predictor_fallbacks"] = c.predictor_fallbacks;
@@ -339,6 +344,9 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     if (contact) {
         k["contact_band_clamped"] = c.contact_band_clamped;
         k["contact_dropped_lanes"] = c.contact_dropped_lanes;
+        k["contact_viscous_point_updates"] = rounded(c.contact_viscous_point_updates);
+        k["contact_viscous_share_max"] = c.contact_viscous_share_max;
+        k["contact_viscous_traction_max"] = c.contact_viscous_traction_max;
     }
     k["patterns_built"] = c.patterns_built;
     k["unreliable_point_updates"] = c.unreliable_point_updates;
@@ -356,6 +364,16 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
                          "(in-plane targets relaxed towards t_N where Algorithm 1 could not "
                          "meet the continuum's; docs/fem.md)",
                          c.contact_relaxed_point_updates)});
+    }
+    if (c.contact_viscous_point_updates > 0.0) {
+        summary.warnings.push_back(
+            {"slip_viscosity", c.contact_viscous_point_updates,
+             fmt::format("{:.0f} committed interface-point update(s) carried a viscous slip "
+                         "traction above 1 % of the band's shear (slip_viscosity; largest share "
+                         "{:.3g}, largest viscous traction {:.3g} kPa): the response there is "
+                         "not the interface model's alone (docs/fem.md)",
+                         c.contact_viscous_point_updates, c.contact_viscous_share_max,
+                         c.contact_viscous_traction_max)});
     }
     if (c.contact_band_clamped > 0) {
         summary.warnings.push_back(

@@ -32,7 +32,8 @@ struct ShearBoxOptions {
     double normal_penalty = 1.0e8;
     int soil_elements = 1; // per horizontal axis (the §5 box: 1)
     int plate_elements = 7;
-    int max_iterations = 20;                        // global Newton
+    int max_iterations = 20; // global Newton
+    int max_cuts = SolverSettings{}.max_cuts;
     int max_gathers = SolverSettings{}.max_gathers; // 0: explicit gather (the paper's)
     bool check_tangent = false;                     // SolverSettings::check_tangent
     std::function<void(ContactPairSpec&)> adjust;   // last changes to the contact pair
@@ -99,6 +100,7 @@ inline ShearBox build_shear_box(const ShearBoxOptions& o) {
 
     SolverSettings settings;
     settings.max_iterations = o.max_iterations;
+    settings.max_cuts = o.max_cuts;
     settings.max_gathers = o.max_gathers;
     settings.check_tangent = o.check_tangent;
     ShearBox box;

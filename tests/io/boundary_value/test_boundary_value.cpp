@@ -147,6 +147,34 @@ TEST(BoundaryValueScene, PolishIterationsKeyAndInnerSolveKeysRefusedWithCoulomb)
     }
 }
 
+// slip_viscosity (a viscous shear traction on a continuum interface, docs/fem.md): off by
+// default, kept for retried increments unless slip_viscosity_use = "always"; negative values
+// and Coulomb pairs are refused naming the key.
+TEST(BoundaryValueScene, SlipViscosityKeys) {
+    const auto plain = test::parse_boundary_value(cnl_2d).contacts.at(0).pair;
+    EXPECT_EQ(plain.slip_viscosity, 0.0);
+    const auto kept =
+        test::parse_boundary_value(cnl_2d, {"interface.slip_viscosity=500"}).contacts.at(0).pair;
+    EXPECT_EQ(kept.slip_viscosity, 500.0);
+    EXPECT_FALSE(kept.slip_viscosity_always);
+    EXPECT_TRUE(test::parse_boundary_value(cnl_2d, {"interface.slip_viscosity=500",
+                                                    "interface.slip_viscosity_use=\"always\""})
+                    .contacts.at(0)
+                    .pair.slip_viscosity_always);
+    const std::string text = test::read_text(cnl_2d);
+    test::expect_boundary_value_error(
+        test::replaced(text, "roughness = 0.9", "roughness = 0.9\nslip_viscosity = -1"),
+        "interface.slip_viscosity", "0");
+    test::expect_boundary_value_error(
+        test::replaced(text, "roughness = 0.9", "roughness = 0.9\nslip_viscosity_use = \"once\""),
+        "interface.slip_viscosity_use", "\"retry\" | \"always\"");
+    const std::string coulomb = test::read_text("scenes/fe-simple-shear-coulomb-2d.toml");
+    test::expect_boundary_value_error(
+        test::replaced(coulomb, "formulation = \"coulomb\"",
+                       "formulation = \"coulomb\"\nslip_viscosity = 10"),
+        "interface.slip_viscosity", "expected no such key");
+}
+
 TEST(BoundaryValueScene, BadInputNamesFileAndKey) {
     const std::string text = test::read_text(cnl_2d);
     test::expect_boundary_value_error(
