@@ -83,6 +83,12 @@ std::unique_ptr<ContactPair> make_contact_pair(const Mesh& mesh, ContactPairSpec
     mesh.face_set(spec.slave_faces); // throws naming the set
     mesh.face_set(spec.master_faces);
     if (spec.coulomb()) {
+        if (spec.slip_viscosity != 0.0) {
+            throw std::invalid_argument(fmt::format(
+                "contact pair '{}': Coulomb friction takes no slip viscosity (it regularises a "
+                "continuum band past its peak)",
+                spec.name));
+        }
         return std::make_unique<CoulombPair>(mesh, std::move(spec));
     }
     return std::visit(

@@ -73,10 +73,10 @@ struct ContactPairSpec {
     // per nominal step, dt the increment's share of its nominal step; 0: off). A
     // regularisation for a band past its peak under load control, where no equilibrium near
     // the last one exists (docs/fem.md, "Slip viscosity"); not part of the paper's equations.
-    // By default only in increments that failed at the finest cut (the solver retries them
-    // with it, StaticSolver::stage_from); `slip_viscosity_always`: in every increment.
+    // In every increment, or (`slip_viscosity_always` false) only in increments that failed at
+    // the finest cut: the solver retries them with it (StaticSolver::stage_from).
     double slip_viscosity = 0.0;
-    bool slip_viscosity_always = false;
+    bool slip_viscosity_always = true;
 
     bool coulomb() const { return options.interface.formulation == InterfaceFormulation::coulomb; }
 };
@@ -196,7 +196,7 @@ public:
     virtual void set_viscous_retry(bool /*on*/) {}
     // The pair has a slip viscosity kept for failed increments.
     bool viscous_fallback() const {
-        return spec().slip_viscosity > 0.0 && !spec().slip_viscosity_always;
+        return spec().slip_viscosity > 0.0 && !spec().slip_viscosity_always && !spec().coulomb();
     }
 
     virtual ContactResultant resultant() const = 0;

@@ -141,6 +141,7 @@ public:
             first_ = false;
         }
         traction_.assign(n, {});
+        viscous_.assign(n, {0.0, 0.0});
         new_increment();
         return changed;
     }
@@ -306,7 +307,6 @@ protected:
     // point presses (t_N < 0): a separated point carries nothing. tau is conjugate to dg_T
     // (fem/mortar_kinematics.hpp), so the viscous work tau_v . dg_T >= 0 is dissipated.
     void add_slip_viscosity(std::size_t i) {
-        viscous_.resize(traction_.size());
         viscous_[i] = {0.0, 0.0};
         const ContactKinematics& k = kin_->point(i);
         ContactTraction& t = traction_[i];

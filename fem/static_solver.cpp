@@ -40,8 +40,9 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
     }
     if (!contacts_.empty()) {
         begin_contacts(false);
-        // The slip viscosity's time: the increment's share of its nominal step.
-        contacts_.set_increment_length((t_end - t_begin) * std::max(1, stage_ ? stage_->steps : 1));
+        // The slip viscosity's time: the increment's share of its nominal step (exact: every
+        // increment of a step is 1 / 2^depth of it).
+        contacts_.set_increment_length(std::ldexp(1.0, -info.cut_depth));
     }
     bool residual_current = false;
     first_guess(t_begin, t_end, residual_current);

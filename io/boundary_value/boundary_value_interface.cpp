@@ -1,6 +1,7 @@
 #include "io/boundary_value/boundary_value_interface.hpp"
 
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include <fmt/format.h>
@@ -177,9 +178,14 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
         t.choice_or("adaptive_partition", "increment", {"increment", "iteration"}) == "increment";
     // A viscous shear traction for bands past their peak under load control (docs/fem.md).
     pair.slip_viscosity =
-        t.number_or("slip_viscosity", pair.slip_viscosity, Bounds::closed_open(0.0, 1.0e12));
+        t.number_or("slip_viscosity", pair.slip_viscosity,
+                    Bounds::closed_open(0.0, std::numeric_limits<double>::infinity()));
+    if (t.has("slip_viscosity_use") && !(pair.slip_viscosity > 0.0)) {
+        t.fail("slip_viscosity_use", "a slip_viscosity > 0 beside it (without one there is no "
+                                     "viscosity to use)");
+    }
     pair.slip_viscosity_always =
-        t.choice_or("slip_viscosity_use", "retry", {"retry", "always"}) == "always";
+        t.choice_or("slip_viscosity_use", "always", {"always", "retry"}) == "always";
     pair.initial_state = state_function(t, f.material, f.stress_start, soil.void_ratio);
     // Check the state keys now, with the slave body's initial stress.
     pair.initial_state(vertical_local(soil.stress, mesh.dim()));

@@ -148,26 +148,30 @@ TEST(BoundaryValueScene, PolishIterationsKeyAndInnerSolveKeysRefusedWithCoulomb)
 }
 
 // slip_viscosity (a viscous shear traction on a continuum interface, docs/fem.md): off by
-// default, kept for retried increments unless slip_viscosity_use = "always"; negative values
-// and Coulomb pairs are refused naming the key.
+// default, in every increment unless slip_viscosity_use = "retry"; negative values, a use
+// without a viscosity and Coulomb pairs are refused naming the key.
 TEST(BoundaryValueScene, SlipViscosityKeys) {
     const auto plain = test::parse_boundary_value(cnl_2d).contacts.at(0).pair;
     EXPECT_EQ(plain.slip_viscosity, 0.0);
     const auto kept =
         test::parse_boundary_value(cnl_2d, {"interface.slip_viscosity=500"}).contacts.at(0).pair;
     EXPECT_EQ(kept.slip_viscosity, 500.0);
-    EXPECT_FALSE(kept.slip_viscosity_always);
-    EXPECT_TRUE(test::parse_boundary_value(cnl_2d, {"interface.slip_viscosity=500",
-                                                    "interface.slip_viscosity_use=\"always\""})
-                    .contacts.at(0)
-                    .pair.slip_viscosity_always);
+    EXPECT_TRUE(kept.slip_viscosity_always);
+    EXPECT_FALSE(test::parse_boundary_value(cnl_2d, {"interface.slip_viscosity=500",
+                                                     "interface.slip_viscosity_use=\"retry\""})
+                     .contacts.at(0)
+                     .pair.slip_viscosity_always);
     const std::string text = test::read_text(cnl_2d);
     test::expect_boundary_value_error(
         test::replaced(text, "roughness = 0.9", "roughness = 0.9\nslip_viscosity = -1"),
-        "interface.slip_viscosity", "0");
+        "interface.slip_viscosity", ">= 0");
     test::expect_boundary_value_error(
-        test::replaced(text, "roughness = 0.9", "roughness = 0.9\nslip_viscosity_use = \"once\""),
-        "interface.slip_viscosity_use", "\"retry\" | \"always\"");
+        test::replaced(text, "roughness = 0.9",
+                       "roughness = 0.9\nslip_viscosity = 10\nslip_viscosity_use = \"once\""),
+        "interface.slip_viscosity_use", "\"always\" | \"retry\"");
+    test::expect_boundary_value_error(
+        test::replaced(text, "roughness = 0.9", "roughness = 0.9\nslip_viscosity_use = \"retry\""),
+        "interface.slip_viscosity_use", "a slip_viscosity > 0 beside it");
     const std::string coulomb = test::read_text("scenes/fe-simple-shear-coulomb-2d.toml");
     test::expect_boundary_value_error(
         test::replaced(coulomb, "formulation = \"coulomb\"",
