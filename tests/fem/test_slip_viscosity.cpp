@@ -110,18 +110,17 @@ TEST(SlipViscosity, KeptForRetriesLeavesAConvergingRunUnchanged) {
 // tried once more with the viscosity, and the run says so when that fails too; a pair without
 // a viscosity kept for retries is not retried.
 TEST(SlipViscosity, RetriesAnIncrementThatFailedAtTheFinestCut) {
-    ShearBoxOptions strict = box(0.0, false);
-    strict.steps = 2;
-    strict.max_iterations = 2;
-    strict.max_cuts = 0;
-    const ShearBoxRun plain = run_shear_box(strict);
+    const auto strict = [](double eta) {
+        ShearBoxOptions o = box(eta, false);
+        o.steps = 2;
+        o.max_iterations = 2;
+        o.max_cuts = 0;
+        return o;
+    };
+    const ShearBoxRun plain = run_shear_box(strict(0.0));
     ASSERT_FALSE(plain.ok);
     EXPECT_EQ(plain.reason.find("slip viscosity"), std::string::npos) << plain.reason;
-    ShearBoxOptions retried = box(1.0e6, false);
-    retried.steps = 2;
-    retried.max_iterations = 2;
-    retried.max_cuts = 0;
-    const ShearBoxRun run = run_shear_box(retried);
+    const ShearBoxRun run = run_shear_box(strict(1.0e6));
     ASSERT_FALSE(run.ok);
     EXPECT_NE(run.reason.find("the last time with the slip viscosity"), std::string::npos)
         << run.reason;
