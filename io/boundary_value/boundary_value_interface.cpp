@@ -180,8 +180,10 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     pair.slip_viscosity =
         t.number_or("slip_viscosity", pair.slip_viscosity,
                     Bounds::closed_open(0.0, std::numeric_limits<double>::infinity()));
-    if (t.has("slip_viscosity_use") && !(pair.slip_viscosity > 0.0)) {
-        t.fail("slip_viscosity_use", "a slip_viscosity > 0 beside it (without one there is no "
+    // Without a slip_viscosity key the use names nothing; with one set to 0 (e.g. by --set on a
+    // scene that has one) it is moot and allowed.
+    if (t.has("slip_viscosity_use") && !t.has("slip_viscosity")) {
+        t.fail("slip_viscosity_use", "a slip_viscosity beside it (without one there is no "
                                      "viscosity to use)");
     }
     pair.slip_viscosity_always =

@@ -171,7 +171,15 @@ TEST(BoundaryValueScene, SlipViscosityKeys) {
         "interface.slip_viscosity_use", "\"always\" | \"retry\"");
     test::expect_boundary_value_error(
         test::replaced(text, "roughness = 0.9", "roughness = 0.9\nslip_viscosity_use = \"retry\""),
-        "interface.slip_viscosity_use", "a slip_viscosity > 0 beside it");
+        "interface.slip_viscosity_use", "a slip_viscosity beside it");
+    // A scene's viscosity switched off from the command line keeps its use key.
+    const std::string with_use = test::write_scene(
+        test::replaced(text, "roughness = 0.9",
+                       "roughness = 0.9\nslip_viscosity = 500\nslip_viscosity_use = \"always\""));
+    EXPECT_EQ(test::parse_boundary_value(with_use, {"interface.slip_viscosity=0"})
+                  .contacts.at(0)
+                  .pair.slip_viscosity,
+              0.0);
     const std::string coulomb = test::read_text("scenes/fe-simple-shear-coulomb-2d.toml");
     test::expect_boundary_value_error(
         test::replaced(coulomb, "formulation = \"coulomb\"",
