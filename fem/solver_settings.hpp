@@ -89,6 +89,12 @@ struct SolverSettings {
     // halving over the last 3 iterations): the floor set by the inner solves (Algorithm 1
     // and the adaptive substeps converge to their own tolerances). Counted. 0: never.
     double stagnation_tolerance = 1.0e-5;
+    // Cut an increment whose Newton iteration has diverged: 6 iterations into a solve, its
+    // relative residual is still above the one the solve started from (counted:
+    // divergence_cuts). Such an iteration rarely recovers within max_iterations, and its
+    // iterates cost most: their strains send the interface models into thousands of
+    // substeps (docs/fem.md, "Early cuts").
+    bool divergence_check = true;
     // Implicit gather of the novel interface's in-plane targets (Eqs. 14-16): after Newton
     // converges, the targets are extrapolated again from the converged continuum stress and,
     // while one moved by more than gather_tolerance (relative), Newton goes on with them, at

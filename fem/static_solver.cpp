@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "fem/newton_divergence.hpp"
 #include "fem/phase_timer.hpp"
 #include "fem/vector_norm.hpp"
 
@@ -99,6 +100,17 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
                 ++counters_.stagnation_accepts;
             }
             return true;
+        }
+        if (settings_.divergence_check &&
+            newton_diverged(info.residuals, static_cast<std::size_t>(solve_start))) {
+            ++counters_.divergence_cuts;
+            error = fmt::format("Newton diverged: after {} iterations the relative residual "
+                                "{:.3e} is above the {:.3e} it started from (residuals {}); cut "
+                                "early",
+                                it - solve_start, rel,
+                                info.residuals[static_cast<std::size_t>(solve_start)],
+                                residual_trace(info.residuals));
+            return false;
         }
         if (it - solve_start == settings_.max_iterations) {
             error = fmt::format(

@@ -65,6 +65,7 @@ struct SolverCounters {
     long contact_failures = 0;   // engine updates with a failed point (the increment was cut)
     long line_search_steps = 0;  // residual passes spent halving Newton steps
     long stagnation_accepts = 0; // increments accepted at the inner solves' noise floor
+    long divergence_cuts = 0;    // increments cut early: their Newton could not converge in time
     double worst_accepted_residual = 0.0; // largest relative residual of an accepted increment
     long increment_growths = 0;           // increments doubled back towards the nominal step
     long predictor_solves = 0;            // tangent predictors (one solve each)

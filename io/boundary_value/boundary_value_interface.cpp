@@ -100,6 +100,7 @@ const std::vector<std::string_view>& boundary_value_interface_keys() {
                                                        "jacobian_tolerance",
                                                        "polish_iterations",
                                                        "adaptive_partition",
+                                                       "defer_jacobian",
                                                        "slip_viscosity",
                                                        "slip_viscosity_use"};
     return keys;
@@ -143,7 +144,7 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     if (f.is_coulomb()) {
         constexpr std::string_view algorithm1_keys[] = {"model_tolerance", "newton_jacobian",
                                                         "jacobian_tolerance", "polish_iterations",
-                                                        "adaptive_partition"};
+                                                        "adaptive_partition", "defer_jacobian"};
         t.reject(algorithm1_keys, algorithm1_key_with_coulomb);
         constexpr std::string_view viscosity_key[] = {"slip_viscosity", "slip_viscosity_use"};
         t.reject(viscosity_key, "regularises a continuum interface band past its peak; "
@@ -176,6 +177,8 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     // each (docs/fem.md).
     pair.hold_partition =
         t.choice_or("adaptive_partition", "increment", {"increment", "iteration"}) == "increment";
+    // Eq. 37's lanes only when the solver asks for the tangent, not in every residual pass.
+    pair.defer_jacobian = t.boolean_or("defer_jacobian", pair.defer_jacobian);
     // A viscous shear traction for bands past their peak under load control (docs/fem.md).
     pair.slip_viscosity =
         t.number_or("slip_viscosity", pair.slip_viscosity,

@@ -322,6 +322,7 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     k["predictor_rejections"] = c.predictor_rejections;
     k["line_search_steps"] = c.line_search_steps;
     k["stagnation_accepts"] = c.stagnation_accepts;
+    k["divergence_cuts"] = c.divergence_cuts;
     k["gathers"] = c.gathers;
     k["partition_solves"] = c.partition_solves;
     k["partition_releases"] = c.partition_releases;

@@ -24,7 +24,7 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
     t.allow_only({"residual_tolerance", "displacement_tolerance", "max_iterations", "max_cuts",
                   "growth_after", "max_line_search", "stagnation_tolerance", "gather_tolerance",
                   "max_gathers", "linear_solver", "tangent", "predictor", "extrapolate",
-                  "check_tangent", "max_step_substeps"});
+                  "check_tangent", "max_step_substeps", "divergence_check"});
     s.residual_tolerance =
         t.number_or("residual_tolerance", s.residual_tolerance, Bounds::open(0.0, 1.0));
     s.displacement_tolerance =
@@ -40,6 +40,7 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
         t.number_or("gather_tolerance", s.gather_tolerance, Bounds::open(0.0, 1.0));
     s.max_gathers = static_cast<int>(t.integer_or("max_gathers", s.max_gathers, 0, 1000));
     s.check_tangent = t.boolean_or("check_tangent", false);
+    s.divergence_check = t.boolean_or("divergence_check", s.divergence_check);
     scene.linear_solver = t.choice_or("linear_solver", "umfpack", {"umfpack", "klu"});
     s.linear_solver = scene.linear_solver == "umfpack" ? fem::LinearSolverKind::umfpack
                                                        : fem::LinearSolverKind::klu;

@@ -136,7 +136,7 @@ TEST(BoundaryValueScene, PolishIterationsKeyAndInnerSolveKeysRefusedWithCoulomb)
         "interface.polish_iterations", "10");
     const std::string coulomb = test::read_text("scenes/fe-simple-shear-coulomb-2d.toml");
     for (const char* key : {"model_tolerance = 1e-5", "polish_iterations = 2",
-                            "adaptive_partition = \"iteration\""}) {
+                            "adaptive_partition = \"iteration\"", "defer_jacobian = true"}) {
         const std::string name = std::string(key).substr(0, std::string(key).find(' '));
         test::expect_boundary_value_error(
             test::replaced(coulomb, "formulation = \"coulomb\"",
@@ -145,6 +145,18 @@ TEST(BoundaryValueScene, PolishIterationsKeyAndInnerSolveKeysRefusedWithCoulomb)
             "tunes Algorithm 1 of the continuum formulations \"novel\" and \"stutz\"; expected no "
             "such key for formulation \"coulomb\"");
     }
+}
+
+// defer_jacobian (Eq. 37's lanes only for the tangent) reaches the pair; off by default.
+TEST(BoundaryValueScene, DeferJacobianKey) {
+    EXPECT_FALSE(test::parse_boundary_value(cnl_2d).contacts.at(0).pair.defer_jacobian);
+    EXPECT_TRUE(test::parse_boundary_value(cnl_2d, {"interface.defer_jacobian=true"})
+                    .contacts.at(0)
+                    .pair.defer_jacobian);
+    test::expect_boundary_value_error(
+        test::replaced(test::read_text(cnl_2d), "roughness = 0.9",
+                       "roughness = 0.9\ndefer_jacobian = \"yes\""),
+        "interface.defer_jacobian", "true or false");
 }
 
 // slip_viscosity (a viscous shear traction on a continuum interface, docs/fem.md): off by
@@ -246,6 +258,10 @@ TEST(BoundaryValueScene, BadInputNamesFileAndKey) {
         test::replaced(text, with_output,
                        "[solver]\npredictor = \"zero\"\nextrapolate = true\n\n[output]"),
         "solver.extrapolate", "not both");
+    // The early cut of diverged Newton solves is switched by a boolean.
+    test::expect_boundary_value_error(
+        test::replaced(text, with_output, "[solver]\ndivergence_check = 1\n\n[output]"),
+        "solver.divergence_check", "true or false");
 }
 
 TEST(BoundaryValueRun, ShortRunWritesHistoryAndSummary) {
@@ -284,6 +300,7 @@ TEST(BoundaryValueRun, ShortRunWritesHistoryAndSummary) {
     EXPECT_EQ(s["counters"]["increments"], 6);
     EXPECT_GT(s["counters"]["subincrements"].get<long>(), 0);
     EXPECT_GT(s["counters"]["contact_evaluations"].get<long>(), 0);
+    EXPECT_TRUE(s["counters"].contains("divergence_cuts"));
     EXPECT_EQ(s["mesh"]["equations"], 3); // top y, bottom x, bottom y (ties)
     EXPECT_GE(s["iterations_per_increment"]["max"].get<int>(), 1);
 }
