@@ -142,7 +142,7 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     out.formulation = read_interface_formulation(t);
     const InterfaceFormulationSpec& f = out.formulation;
     if (f.is_coulomb()) {
-        constexpr std::string_view algorithm1_keys[] = {"model_tolerance", "newton_jacobian",
+        constexpr std::string_view algorithm1_keys[] = {"model_tolerance",    "newton_jacobian",
                                                         "jacobian_tolerance", "polish_iterations",
                                                         "adaptive_partition", "defer_jacobian"};
         t.reject(algorithm1_keys, algorithm1_key_with_coulomb);

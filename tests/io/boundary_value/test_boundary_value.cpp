@@ -153,10 +153,9 @@ TEST(BoundaryValueScene, DeferJacobianKey) {
     EXPECT_TRUE(test::parse_boundary_value(cnl_2d, {"interface.defer_jacobian=true"})
                     .contacts.at(0)
                     .pair.defer_jacobian);
-    test::expect_boundary_value_error(
-        test::replaced(test::read_text(cnl_2d), "roughness = 0.9",
-                       "roughness = 0.9\ndefer_jacobian = \"yes\""),
-        "interface.defer_jacobian", "true or false");
+    test::expect_boundary_value_error(test::replaced(test::read_text(cnl_2d), "roughness = 0.9",
+                                                     "roughness = 0.9\ndefer_jacobian = \"yes\""),
+                                      "interface.defer_jacobian", "true or false");
 }
 
 // slip_viscosity (a viscous shear traction on a continuum interface, docs/fem.md): off by
