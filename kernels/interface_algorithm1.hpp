@@ -128,20 +128,31 @@ Algorithm1Lane<T, M::n_state> interface_begin(const InterfaceSettings& s,
     // follow a straight path from the start values (sigma_N, sigma_p1, sigma_p2 of the converged
     // state), so a change of t_N or of the continuum stress is spread over the sub-increments
     // instead of being forced into the first one.
-    // A touching novel band keeps the in-plane stress ratio of its state (the continuum's
-    // in-plane stresses scaled up with t_N moved its targets with every change of t_N: a band
-    // at its limit surface answered a perturbation of t_N with a kink). So its sigma_p jumps
-    // where it crosses the threshold from the continuum's to its own ratio (Eq. 13 admits a
-    // jump of sigma_p; docs/interface.md). A state without compression (sigma_N > -1e-3
-    // threshold, e.g. a band started from a stress-free continuum) takes isotropic targets.
+    // A touching novel band integrates at sigma_N = -threshold. Near t_N = 0 it keeps the
+    // in-plane stress ratio of its state (the continuum's in-plane stresses scaled up with
+    // t_N moved its targets with every change of t_N: a band at its limit surface answered a
+    // perturbation of t_N with a kink). At the threshold it must meet the closed band, whose
+    // targets are the continuum's sigma_p (Eqs. 19-20): a switch there made sigma_p, and the
+    // shear with it, jump, and the global Newton of a wall whose points sit near -1 kPa fell
+    // to a linear rate (docs/large-scale-test.md). So over -1 ... -1/2 x threshold the
+    // touching targets blend from the continuum's, scaled to -threshold, to the band's own
+    // ratio with a smoothstep weight (C1 in t_N). Closed bands keep the continuum's targets
+    // bit for bit. A state without compression (sigma_N > -1e-3 threshold, e.g. a band
+    // started from a stress-free continuum) has no ratio of its own and takes isotropic ones.
     const T thr = T(s.open_threshold);
     const Mask own_ratio = st.y[0] < T(-1.0e-3) * thr;
     const T ratio_scale = thr / simd::select(own_ratio, -st.y[0], thr);
-    const T touching_p1 = simd::select(own_ratio, st.y[1] * ratio_scale, -thr);
-    const T touching_p2 = simd::select(own_ratio, st.y[2] * ratio_scale, -thr);
-    c.target_end = {simd::select(touching, -thr, in.t_N),
-                    simd::select(touching, touching_p1, in.s_p1),
-                    simd::select(touching, touching_p2, in.s_p2)};
+    const T u = simd::min(simd::max(T(2.0) + T(2.0) * in.t_N / thr, T(0.0)), T(1.0));
+    const T w = u * u * (T(3.0) - T(2.0) * u);
+    const Mask blended = touching && w < T(1.0);
+    const T up_scale = thr / simd::max(-in.t_N, T(0.5) * thr);
+    auto in_plane = [&](const T& own_y, const T& continuum) {
+        const T own = simd::select(own_ratio, own_y * ratio_scale, -thr);
+        const T mix = w * own + (T(1.0) - w) * continuum * up_scale;
+        return simd::select(touching, simd::select(blended, mix, own), continuum);
+    };
+    c.target_end = {simd::select(touching, -thr, in.t_N), in_plane(st.y[1], in.s_p1),
+                    in_plane(st.y[2], in.s_p2)};
     c.target_start = {st.y[0], st.y[1], st.y[2]};
     // Sub-increments needed for the change of the normal targets: at most max_normal_change of
     // the stress per sub-increment (a change of t_N without shear would otherwise be one step).

@@ -64,13 +64,20 @@ ColumnErrors wall_errors(double t_N, double dg, ContactJacobian scheme,
 // A touching point (-open_threshold < t_N < 0) transmits the band's shear scaled by
 // t_N / sigma_N. Its columns are the derivative of that traction (measured 2.6e-6 for
 // Eq. 37 and 1.7e-8 central at dg = 1e-5; the reference used to compare the unscaled band
-// stress, 1e4 apart).
+// stress, 1e4 apart), with the band's own in-plane ratio (-0.3 kPa) and where its targets
+// blend towards the continuum's (-0.75 kPa, docs/interface.md). In the blend Eq. 37's forward
+// columns are 0.12-0.27 off (measured): the band answers a change of its in-plane targets
+// one-sidedly, as at its limit surface; the central scheme's columns are 4e-4-7e-4 off.
 TEST(ContactJacobianLowStress, TouchingPointColumnsAreTheDerivativeOfTheFadedTraction) {
-    for (const double dg : {1.0e-5, 1.0e-4}) {
-        const auto e = wall_errors(-0.5, dg, ContactJacobian::perturbation);
-        ASSERT_TRUE(e.ok);
-        EXPECT_LT(e.eq37, kEq37Tol) << dg;
-        EXPECT_LT(e.central, kCentralTol) << dg;
+    for (const double t_N : {-0.3, -0.75}) {
+        for (const double dg : {1.0e-5, 1.0e-4}) {
+            const auto e = wall_errors(t_N, dg, ContactJacobian::perturbation);
+            ASSERT_TRUE(e.ok);
+            if (t_N > -0.5) {
+                EXPECT_LT(e.eq37, kEq37Tol) << t_N << " " << dg;
+            }
+            EXPECT_LT(e.central, kCentralTol) << t_N << " " << dg;
+        }
     }
 }
 

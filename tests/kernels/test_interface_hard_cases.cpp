@@ -93,9 +93,9 @@ TEST(InterfaceHardCases, SeparatedContactKeepsStateAndClosingResumes) {
 }
 
 // A touching contact (-open_threshold < t_N < 0) reports open and shears its band at
-// sigma_N = -open_threshold with the in-plane stress ratio of its state; the caller scales the
-// traction by |t_N| / threshold, which meets the closed branch at the threshold. Both
-// formulations.
+// sigma_N = -open_threshold, from -threshold/2 on with the in-plane stress ratio of its state;
+// the caller scales the traction by |t_N| / threshold, which meets the closed branch at the
+// threshold. Both formulations.
 TEST(InterfaceHardCases, TouchingContactShearsItsBandAtTheThreshold) {
     const auto mp = l4c(0.9);
     for (const bool stutz : {false, true}) {
@@ -110,10 +110,9 @@ TEST(InterfaceHardCases, TouchingContactShearsItsBandAtTheThreshold) {
         ASSERT_EQ(stats.open, 0.0);
         const HState before = st;
         const double dg = 1.0e-5;
-        // Just above and just below the threshold: the same band, tractions scaled alike.
         HState touching = before;
         interface_update<Hypoplasticity, double>(mp, s, touching,
-                                                 {-0.999 * thr, dg, 0.0, -0.8, -0.7, 0.0}, stats);
+                                                 {-0.4 * thr, dg, 0.0, -0.3, -0.3, 0.0}, stats);
         ASSERT_EQ(stats.status, lane_status::ok);
         EXPECT_EQ(stats.open, 1.0);
         EXPECT_GT(stats.subincrements, 0.0);
@@ -124,15 +123,19 @@ TEST(InterfaceHardCases, TouchingContactShearsItsBandAtTheThreshold) {
             EXPECT_NEAR(touching.y[1] / touching.y[0], before.y[1] / before.y[0], 1.0e-6);
             EXPECT_NEAR(touching.y[2] / touching.y[0], before.y[2] / before.y[0], 1.0e-6);
         }
-        // Closed with the in-plane targets the touching band took (the novel formulation's
-        // continuum targets may differ from them: a jump of sigma_p there, Eq. 13).
-        const double up = 1.001 * thr / std::abs(before.y[0]);
+        // Just above and just below the threshold with the same continuum: the transmitted
+        // shear (scaled by |t_N| / threshold above it) agrees.
+        HState just_open = before;
+        interface_update<Hypoplasticity, double>(
+            mp, s, just_open, {-0.999 * thr, dg, 0.0, -0.999 * 0.8, -0.999 * 0.7, 0.0}, stats);
+        ASSERT_EQ(stats.status, lane_status::ok);
+        EXPECT_EQ(stats.open, 1.0);
         HState closed = before;
         interface_update<Hypoplasticity, double>(
-            mp, s, closed, {-1.001 * thr, dg, 0.0, before.y[1] * up, before.y[2] * up, 0.0}, stats);
+            mp, s, closed, {-1.001 * thr, dg, 0.0, -1.001 * 0.8, -1.001 * 0.7, 0.0}, stats);
         ASSERT_EQ(stats.status, lane_status::ok);
         EXPECT_EQ(stats.open, 0.0);
-        const double tau_touching = 0.999 * touching.y[3]; // |t_N| / threshold
+        const double tau_touching = 0.999 * just_open.y[3]; // |t_N| / threshold
         EXPECT_NEAR(tau_touching, closed.y[3], 0.02 * std::abs(closed.y[3])) << stutz;
         // The shear responds to the slip (an open branch without it leaves the tangent in
         // slip nil): a reversed slip lowers it.
@@ -142,6 +145,50 @@ TEST(InterfaceHardCases, TouchingContactShearsItsBandAtTheThreshold) {
         ASSERT_EQ(stats.status, lane_status::ok);
         EXPECT_LT(reversed.y[3], touching.y[3] - 0.01 * std::abs(touching.y[3])) << stutz;
     }
+}
+
+// A touching novel band's in-plane targets blend from the continuum's (scaled to -threshold)
+// at t_N = -threshold to its own stress ratio at -1/2 x threshold, so the transmitted shear is
+// continuous in t_N at both ends of the blend (a jump at -threshold held the global Newton of
+// a wall at a linear rate), and a closed band keeps the continuum's targets.
+TEST(InterfaceHardCases, NovelInPlaneTargetsBlendContinuouslyAcrossTheThreshold) {
+    const auto mp = l4c(0.9);
+    InterfaceSettings s;
+    const double thr = s.open_threshold;
+    HState st = start_state(-2.0);
+    InterfaceStats<double> stats;
+    interface_update<Hypoplasticity, double>(mp, s, st, {-1.5, 2.0e-5, 0.0, -1.2, -1.1, 0.0},
+                                             stats);
+    ASSERT_EQ(stats.status, lane_status::ok);
+    const HState before = st;
+    // The continuum's in-plane ratio (0.4) is far from the band's own (about 0.8).
+    const double K = 0.4;
+    ASSERT_GT(std::abs(before.y[1] / before.y[0] - K), 0.2);
+    auto transmitted = [&](double t_N, HState* out = nullptr) {
+        HState a = before;
+        interface_update<Hypoplasticity, double>(mp, s, a,
+                                                 {t_N, 1.0e-5, 0.0, K * t_N, K * t_N, 0.0}, stats);
+        EXPECT_EQ(stats.status, lane_status::ok) << t_N;
+        if (out != nullptr) {
+            *out = a;
+        }
+        return std::min(1.0, std::abs(t_N) / thr) * a.y[3];
+    };
+    for (const double edge : {-1.0, -0.5}) {
+        const double below = transmitted((edge - 1.0e-4) * thr);
+        const double above = transmitted((edge + 1.0e-4) * thr);
+        EXPECT_NEAR(below, above, 2.0e-3 * std::abs(above)) << "t_N = " << edge << " x threshold";
+    }
+    // Closed, the band meets the continuum's targets.
+    HState closed;
+    transmitted(-1.01 * thr, &closed);
+    EXPECT_NEAR(closed.y[1], K * -1.01 * thr, s.tolerance * thr);
+    // Halfway the in-plane target lies between the two ratios.
+    HState mid;
+    transmitted(-0.75 * thr, &mid);
+    const double own = before.y[1] / before.y[0];
+    EXPECT_GT(std::abs(mid.y[1] / mid.y[0] - K), 0.2 * std::abs(own - K));
+    EXPECT_GT(std::abs(mid.y[1] / mid.y[0] - own), 0.2 * std::abs(own - K));
 }
 
 // A reversal of the tangential gap increment in every one of 300 increments (CNL at -100 kPa,
