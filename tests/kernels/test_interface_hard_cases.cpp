@@ -56,6 +56,17 @@ void expect_defined(const HState& before, const HState& after, const InterfaceSt
     }
 }
 
+// A band started at -2 kPa and sheared once, closed (the start of the low-stress cases).
+template <class P>
+HState sheared_band(const P& mp, const InterfaceSettings& s, const InterfaceInput<double>& in) {
+    HState st = start_state(-2.0);
+    InterfaceStats<double> stats;
+    interface_update<Hypoplasticity, double>(mp, s, st, in, stats);
+    EXPECT_EQ(stats.status, lane_status::ok);
+    EXPECT_EQ(stats.open, 0.0);
+    return st;
+}
+
 } // namespace
 
 // A separated contact (t_N >= 0) keeps its state and reports open; when it closes again the
@@ -102,13 +113,8 @@ TEST(InterfaceHardCases, TouchingContactShearsItsBandAtTheThreshold) {
         InterfaceSettings s;
         s.formulation = stutz ? InterfaceFormulation::stutz : InterfaceFormulation::novel;
         const double thr = s.open_threshold;
-        HState st = start_state(-2.0);
         InterfaceStats<double> stats;
-        interface_update<Hypoplasticity, double>(mp, s, st, {-1.2, 2.0e-5, 0.0, -0.8, -0.7, 0.0},
-                                                 stats);
-        ASSERT_EQ(stats.status, lane_status::ok);
-        ASSERT_EQ(stats.open, 0.0);
-        const HState before = st;
+        const HState before = sheared_band(mp, s, {-1.2, 2.0e-5, 0.0, -0.8, -0.7, 0.0});
         const double dg = 1.0e-5;
         HState touching = before;
         interface_update<Hypoplasticity, double>(mp, s, touching,
@@ -155,12 +161,8 @@ TEST(InterfaceHardCases, NovelInPlaneTargetsBlendContinuouslyAcrossTheThreshold)
     const auto mp = l4c(0.9);
     InterfaceSettings s;
     const double thr = s.open_threshold;
-    HState st = start_state(-2.0);
     InterfaceStats<double> stats;
-    interface_update<Hypoplasticity, double>(mp, s, st, {-1.5, 2.0e-5, 0.0, -1.2, -1.1, 0.0},
-                                             stats);
-    ASSERT_EQ(stats.status, lane_status::ok);
-    const HState before = st;
+    const HState before = sheared_band(mp, s, {-1.5, 2.0e-5, 0.0, -1.2, -1.1, 0.0});
     // The continuum's in-plane ratio (0.4) is far from the band's own (about 0.8).
     const double K = 0.4;
     ASSERT_GT(std::abs(before.y[1] / before.y[0] - K), 0.2);
