@@ -489,12 +489,17 @@ struct LaneResults {
     std::array<double, W> eps_n, eps_p1, eps_p2, status, subincrements;
 };
 LaneResults run_batch(const HypoplasticityParams& mp, const InterfaceSettings& s,
-                      const LaneInputs& li) {
-    const HState one = start_state();
+                      const LaneInputs& li, const HState& one = start_state()) {
     InterfaceState<Batch, Hypoplasticity::n_state> st;
     for (int k = 0; k < Hypoplasticity::n_state; ++k) {
         st.y[k] = Batch(one.y[k]);
     }
+    st.eps_n = Batch(one.eps_n);
+    st.eps_p1 = Batch(one.eps_p1);
+    st.eps_p2 = Batch(one.eps_p2);
+    st.gamma1 = Batch(one.gamma1);
+    st.gamma2 = Batch(one.gamma2);
+    st.last_subincrement = Batch(one.last_subincrement);
     alignas(64) std::array<double, W> a, b, c, d, e;
     a = li.t_N;
     b = li.dg1;
@@ -521,9 +526,10 @@ LaneResults run_batch(const HypoplasticityParams& mp, const InterfaceSettings& s
 }
 
 DirectResult<Hypoplasticity> run_scalar(const HypoplasticityParams& mp, const InterfaceSettings& s,
-                                        const LaneInputs& li, std::size_t l) {
+                                        const LaneInputs& li, std::size_t l,
+                                        const HState& from = start_state()) {
     return direct_update<Hypoplasticity>(
-        mp, s, start_state(), {li.t_N[l], li.dg1[l], li.dg2[l], li.s_p1[l], li.s_p2[l], 0.0});
+        mp, s, from, {li.t_N[l], li.dg1[l], li.dg2[l], li.s_p1[l], li.s_p2[l], 0.0});
 }
 
 double rel_diff(double a, double b) {
@@ -601,6 +607,32 @@ TEST(InterfaceSimd, BatchMatchesScalarLaneByLane) {
                 }
                 EXPECT_LT(rel_diff(r.eps_n[l], sc.st.eps_n), 1.0e-12);
             }
+        }
+    }
+}
+
+// Lanes across the touching blend (closed, at the threshold, blended, own ratio) in one batch
+// against the scalar path: the blend's selects give each lane its scalar result.
+TEST(InterfaceSimd, TouchingBlendLanesMatchScalar) {
+    const auto mp = l4c(0.9);
+    InterfaceSettings s;
+    const HState from = sheared_band(mp, s, {-1.5, 2.0e-5, 0.0, -1.2, -1.1, 0.0});
+    const std::array<double, 8> t_N{-1.3, -1.0, -0.9, -0.75, -0.6, -0.5, -0.3, -0.1};
+    LaneInputs in;
+    for (std::size_t l = 0; l < W; ++l) {
+        in.t_N[l] = t_N[l % t_N.size()];
+        in.dg1[l] = 1.0e-5;
+        in.dg2[l] = 2.0e-6;
+        in.s_p1[l] = 0.4 * in.t_N[l];
+        in.s_p2[l] = 0.45 * in.t_N[l];
+    }
+    const LaneResults r = run_batch(mp, s, in, from);
+    for (std::size_t l = 0; l < W; ++l) {
+        const auto sc = run_scalar(mp, s, in, l, from);
+        ASSERT_EQ(sc.stats.status, lane_status::ok) << in.t_N[l];
+        EXPECT_EQ(r.subincrements[l], sc.stats.subincrements) << in.t_N[l];
+        for (int k = 0; k < 7; ++k) {
+            EXPECT_LT(rel_diff(r.y[l][k], sc.st.y[k]), 1.0e-12) << in.t_N[l] << " entry " << k;
         }
     }
 }
