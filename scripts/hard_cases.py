@@ -15,12 +15,18 @@ Properties checked on every history.csv (also of stopped runs):
                states it (warnings *_tension)
   void ratio   every void ratio column > 0
   equilibrium  boundary-value runs that complete: the last increment's residual below 1e-6
-  time         wall time within the case's `seconds`
+  time         wall time within the case's `seconds` (times --time-slack, see below)
 and, where a case asks (`compare`), "threads": --threads 1 and 2 give the same history.csv byte
 for byte; "scalar": the scalar path's history agrees with the SIMD path's to 1e-6 (relative,
 absolute below 1).
 
-Usage: hard_cases.py IFSIM [--quick] [--only NAME]... [--work DIR] [--list]
+The budgets are wall times of the suite run alone on an idle 2-core machine. Under ctest -j2,
+beside the long boundary-value tests on a shared machine, the same case took 2.5x its time alone
+(fe-unstructured-mesh: 12.2 s alone, 30.4 s in CI), so the test suite passes --time-slack 3: a
+case fails on time only beyond slack x budget, and is reported as over budget above 1x.
+Speed itself is shown by the benchmarks (docs/performance.md), not by this suite.
+
+Usage: hard_cases.py IFSIM [--quick] [--only NAME]... [--work DIR] [--time-slack F] [--list]
 Exit 0 when every case is defined (outcome and properties as stated), 1 otherwise.
 """
 import argparse
@@ -115,14 +121,14 @@ def min_void_ratio(header, rows, coulomb):
     return min(vals) if vals else None
 
 
-def run(ifsim, case, out, extra=()):
+def run(ifsim, case, out, extra=(), slack=1.0):
     scene = os.path.join(ROOT, "scenes", "hard-cases", case["scene"])
     cmd = [ifsim, "run", scene, "--out", out, "-q", "--replace"]
     for s in case.get("set", []):
         cmd += ["--set", s]
     cmd += list(extra)
     t0 = time.time()
-    limit = max(30.0, 3.0 * case.get("seconds", 10))
+    limit = max(30.0, max(3.0, slack) * case.get("seconds", 10))
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         _, err = proc.communicate(timeout=limit)
@@ -181,10 +187,10 @@ def compare_histories(a, b, exact, tolerance=1e-6):
     return worst <= tolerance, worst
 
 
-def check_case(ifsim, case, work):
+def check_case(ifsim, case, work, slack=1.0):
     name = case["name"]
     out = os.path.join(work, name)
-    code, err, wall, cmd = run(ifsim, case, out)
+    code, err, wall, cmd = run(ifsim, case, out, slack=slack)
     summary_path = os.path.join(out, "summary.json")
     summary_text = open(summary_path).read() if os.path.exists(summary_path) else ""
     summary = json.loads(summary_text) if summary_text else None
@@ -230,13 +236,15 @@ def check_case(ifsim, case, work):
         problems.append("no history.csv")
     budget = case.get("seconds", 10)
     checked.append(f"<= {budget} s")
-    if wall > budget:
-        problems.append(f"took {wall:.1f} s > {budget} s")
+    if wall > slack * budget:
+        problems.append(f"took {wall:.1f} s > {slack:g} x {budget} s")
+    elif wall > budget:
+        checked.append(f"over budget ({wall / budget:.2f}x, within slack {slack:g})")
     for what in case.get("compare", []):
         if what == "threads":
             o1, o2 = out + "-t1", out + "-t2"
-            run(ifsim, case, o1, ["--threads", "1"])
-            run(ifsim, case, o2, ["--threads", "2"])
+            run(ifsim, case, o1, ["--threads", "1"], slack)
+            run(ifsim, case, o2, ["--threads", "2"], slack)
             same, _ = compare_histories(os.path.join(o1, "history.csv"),
                                         os.path.join(o2, "history.csv"), True)
             checked.append("1 = 2 threads")
@@ -244,7 +252,7 @@ def check_case(ifsim, case, work):
                 problems.append("--threads 1 and 2 differ")
         elif what == "scalar":
             o = out + "-scalar"
-            run(ifsim, case, o, ["--scalar"])
+            run(ifsim, case, o, ["--scalar"], slack)
             tol = case.get("scalar_tolerance", 1e-6)
             same, worst = compare_histories(history, os.path.join(o, "history.csv"), False, tol)
             checked.append(f"scalar ~ SIMD ({worst:.1e})")
@@ -265,6 +273,9 @@ def main():
     ap.add_argument("--work", default=os.path.join(ROOT, "build", "hard-cases"))
     ap.add_argument("--list", action="store_true", help="list the cases and exit")
     ap.add_argument("--json", help="also write the results to this file")
+    ap.add_argument("--time-slack", type=float, default=1.0,
+                    help="fail on time only beyond this multiple of a case's budget "
+                         "(for loaded machines; default 1)")
     a = ap.parse_args()
     with open(CASES, "rb") as f:
         cases = tomllib.load(f)["case"]
@@ -286,7 +297,7 @@ def main():
     results = []
     print(f"{'case':32s} {'outcome':12s} {'time':>7s}  result  checked")
     for c in chosen:
-        r = check_case(a.ifsim, c, a.work)
+        r = check_case(a.ifsim, c, a.work, a.time_slack)
         results.append(r)
         flag = "ok" if not r["problems"] else "UNDEFINED"
         print(f"{r['name']:32s} {r['got']:12s} {r['wall']:6.1f}s  {flag:7s} {', '.join(r['checked'])}",
