@@ -20,6 +20,9 @@ struct LinearSolverCounters {
     long symbolic_analyses = 0;
     long numeric_factorisations = 0;
     long solves = 0;
+    long krylov_solves = 0;     // solves with a held factorisation as GMRES preconditioner
+    long krylov_iterations = 0; // their preconditioner applications
+    long krylov_fallbacks = 0;  // of them, unconverged: a new factorisation followed
 };
 
 class LinearSolver {
@@ -35,6 +38,14 @@ public:
                    std::string& error);
     // x = A^-1 b with the last factorisation (x and b of length n; may not alias).
     bool solve(const double* b, double* x, std::string& error);
+    // A factorisation of a matrix with this pattern is held (it may be of older values).
+    bool holds_factorisation(std::uint64_t pattern_id) const;
+    // x = A^-1 b by GMRES on A (the current values) with the held factorisation as its
+    // preconditioner, to ||b - A x|| <= rtol ||b|| within max_iterations preconditioner
+    // applications. false: not converged (counted as a fallback; x is then undefined) - the
+    // caller factorises A instead.
+    bool solve_preconditioned(const Eigen::SparseMatrix<double>& A, const double* b, double* x,
+                              double rtol, int max_iterations);
 
     LinearSolverKind kind() const { return kind_; }
     const LinearSolverCounters& counters() const { return counters_; }

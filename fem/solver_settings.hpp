@@ -107,6 +107,22 @@ struct SolverSettings {
     // the residual along the Newton direction (fem/tangent_check.cpp; costs 4 residual
     // passes per iteration). The records are kept by the solver.
     bool check_tangent = false;
+    // Solve each Newton system by GMRES with the last factorisation as its preconditioner,
+    // and factorise anew only when GMRES does not converge within krylov_max_iterations
+    // steps. The tangent changes little between iterations, and a factorisation costs about
+    // 30 preconditioner applications on the fine §6 mesh (docs/fem.md, "Reused
+    // factorisations"). GMRES stops at a relative residual of min(krylov_tolerance, r) of
+    // the linear system, r the Newton iteration's relative residual. Measured on the coarse
+    // §6 run: 1e-10 reaches the direct solves' history; 1e-4 (an inexact-Newton forcing term)
+    // stalled Newton at 1e-4 in gravity stage 2 - the penalty-stiff system amplifies the
+    // linear residual into the correction.
+    bool reuse_factorisation = false;
+    double krylov_tolerance = 1.0e-10;
+    int krylov_max_iterations = 20;
+    // The cost of a factorisation in preconditioner applications, for the decision to keep
+    // the held one (fem/static_solver.cpp, solve_tangent_system). A count, not a timing, so
+    // the run's path does not depend on the machine's load.
+    double krylov_factorisation_cost = 30.0;
 };
 
 } // namespace ifsim::fem

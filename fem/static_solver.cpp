@@ -45,6 +45,9 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
         // increment of a step is 1 / 2^depth of it).
         contacts_.set_increment_length(std::ldexp(1.0, -info.cut_depth));
     }
+    // Reused factorisations live within one increment: a run resumed from a checkpoint
+    // (which holds none) then takes the uninterrupted run's path bit for bit.
+    factorisation_stale_ = true;
     bool residual_current = false;
     first_guess(t_begin, t_end, residual_current);
     if (!residual_current && !residual_pass(t_end, du_, error)) {
@@ -209,8 +212,8 @@ bool StaticSolver::tangent_predictor(double t_end, std::string& error) {
     tangent_pass(du_, &coupling);
     {
         PhaseTimer timer(timers_.solve);
-        if (!linear_.factorise(system_->matrix(), system_->pattern_id(), error) ||
-            !linear_.solve(predictor_rhs_.data(), correction_.data(), error)) {
+        if (!solve_tangent_system(predictor_rhs_.data(), correction_.data(),
+                                  settings_.krylov_tolerance, error)) {
             return false;
         }
     }
@@ -222,13 +225,41 @@ bool StaticSolver::tangent_predictor(double t_end, std::string& error) {
     return true;
 }
 
+bool StaticSolver::solve_tangent_system(const double* b, double* x, double forcing,
+                                        std::string& error) {
+    const double rtol = std::max(1.0e-12, std::min(settings_.krylov_tolerance, forcing));
+    if (settings_.reuse_factorisation && !factorisation_stale_ &&
+        linear_.holds_factorisation(system_->pattern_id())) {
+        const long before = linear_.counters().krylov_iterations;
+        const bool converged = linear_.solve_preconditioned(system_->matrix(), b, x, rtol,
+                                                            settings_.krylov_max_iterations);
+        const long steps = linear_.counters().krylov_iterations - before;
+        krylov_steps_since_factorisation_ += steps;
+        ++solves_since_factorisation_;
+        if (converged) {
+            // Keep the factorisation while a solve with it costs no more than the mean cost
+            // per solve since it was made, its own cost shared out (the factorisation's
+            // direct solve counts as one): beyond that a new one is cheaper on average.
+            const double mean = (settings_.krylov_factorisation_cost +
+                                 static_cast<double>(krylov_steps_since_factorisation_)) /
+                                static_cast<double>(solves_since_factorisation_ + 1);
+            factorisation_stale_ = static_cast<double>(steps) > mean;
+            return true;
+        }
+    }
+    krylov_steps_since_factorisation_ = 0;
+    solves_since_factorisation_ = 0;
+    factorisation_stale_ = false;
+    return linear_.factorise(system_->matrix(), system_->pattern_id(), error) &&
+           linear_.solve(b, x, error);
+}
+
 bool StaticSolver::newton_step(double t_end, double& rel, double& correction, IncrementInfo& info,
                                std::string& error) {
     tangent_pass(du_);
     {
         PhaseTimer timer(timers_.solve);
-        if (!linear_.factorise(system_->matrix(), system_->pattern_id(), error) ||
-            !linear_.solve(residual_.data(), correction_.data(), error)) {
+        if (!solve_tangent_system(residual_.data(), correction_.data(), rel, error)) {
             return false;
         }
     }

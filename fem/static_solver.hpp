@@ -245,6 +245,10 @@ private:
     // the committed state cannot be evaluated or its tangent not factorised.
     bool tangent_predictor(double t_end, std::string& error);
     void zero_free_dofs(); // du_: prescribed_du_ on prescribed DOFs, zero elsewhere
+    // x = K^-1 b with the assembled tangent: by GMRES on the held factorisation
+    // (settings.reuse_factorisation) to the relative residual min(krylov_tolerance,
+    // forcing) or, failing that, a new factorisation.
+    bool solve_tangent_system(const double* b, double* x, double forcing, std::string& error);
     // One Newton step from du_: solve with the tangent at du_, then backtrack on the residual
     // norm; rel in: the residual at du_, out: at the new iterate.
     bool newton_step(double t_end, double& rel, double& correction, IncrementInfo& info,
@@ -287,6 +291,12 @@ private:
     DofMap dofs_;
     std::unique_ptr<SparseSystem> system_;
     LinearSolver linear_;
+    // Reuse of the held factorisation (settings.reuse_factorisation), in preconditioner
+    // applications: the Krylov steps spent since the last factorisation and the solves made
+    // with it; stale: the next system is factorised directly (so at every increment start).
+    long krylov_steps_since_factorisation_ = 0;
+    long solves_since_factorisation_ = 0;
+    bool factorisation_stale_ = false;
     std::vector<double> u_stage_start_;
 
     // Displacements and forces.

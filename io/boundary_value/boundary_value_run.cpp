@@ -385,6 +385,9 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     }
     k["linear_symbolic_analyses"] = c.linear.symbolic_analyses;
     k["linear_factorisations"] = c.linear.numeric_factorisations;
+    k["linear_krylov_solves"] = c.linear.krylov_solves;
+    k["linear_krylov_iterations"] = c.linear.krylov_iterations;
+    k["linear_krylov_fallbacks"] = c.linear.krylov_fallbacks;
     k["linear_solves"] = c.linear.solves;
     k["k0_points"] = c.k0_points;
     k["geometry_updates"] = c.geometry_updates;

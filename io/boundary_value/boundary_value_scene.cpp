@@ -21,10 +21,26 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
         return;
     }
     const TableReader t = root.table("solver");
-    t.allow_only({"residual_tolerance", "displacement_tolerance", "max_iterations", "max_cuts",
-                  "growth_after", "max_line_search", "stagnation_tolerance", "gather_tolerance",
-                  "max_gathers", "linear_solver", "tangent", "predictor", "extrapolate",
-                  "check_tangent", "max_step_substeps", "divergence_check"});
+    t.allow_only({"residual_tolerance",
+                  "displacement_tolerance",
+                  "max_iterations",
+                  "max_cuts",
+                  "growth_after",
+                  "max_line_search",
+                  "stagnation_tolerance",
+                  "gather_tolerance",
+                  "max_gathers",
+                  "linear_solver",
+                  "tangent",
+                  "predictor",
+                  "extrapolate",
+                  "check_tangent",
+                  "max_step_substeps",
+                  "divergence_check",
+                  "reuse_factorisation",
+                  "krylov_tolerance",
+                  "krylov_max_iterations",
+                  "krylov_factorisation_cost"});
     s.residual_tolerance =
         t.number_or("residual_tolerance", s.residual_tolerance, Bounds::open(0.0, 1.0));
     s.displacement_tolerance =
@@ -41,6 +57,13 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
     s.max_gathers = static_cast<int>(t.integer_or("max_gathers", s.max_gathers, 0, 1000));
     s.check_tangent = t.boolean_or("check_tangent", false);
     s.divergence_check = t.boolean_or("divergence_check", s.divergence_check);
+    s.reuse_factorisation = t.boolean_or("reuse_factorisation", s.reuse_factorisation);
+    s.krylov_tolerance =
+        t.number_or("krylov_tolerance", s.krylov_tolerance, Bounds::open(0.0, 1.0));
+    s.krylov_max_iterations =
+        static_cast<int>(t.integer_or("krylov_max_iterations", s.krylov_max_iterations, 1, 1000));
+    s.krylov_factorisation_cost = t.number_or("krylov_factorisation_cost",
+                                              s.krylov_factorisation_cost, Bounds::non_negative());
     scene.linear_solver = t.choice_or("linear_solver", "umfpack", {"umfpack", "klu"});
     s.linear_solver = scene.linear_solver == "umfpack" ? fem::LinearSolverKind::umfpack
                                                        : fem::LinearSolverKind::klu;

@@ -36,6 +36,7 @@ struct ShearBoxOptions {
     int max_cuts = SolverSettings{}.max_cuts;
     int max_gathers = SolverSettings{}.max_gathers; // 0: explicit gather (the paper's)
     bool check_tangent = false;                     // SolverSettings::check_tangent
+    bool reuse_factorisation = false;               // SolverSettings::reuse_factorisation
     std::function<void(ContactPairSpec&)> adjust;   // last changes to the contact pair
 };
 
@@ -103,6 +104,7 @@ inline ShearBox build_shear_box(const ShearBoxOptions& o) {
     settings.max_cuts = o.max_cuts;
     settings.max_gathers = o.max_gathers;
     settings.check_tangent = o.check_tangent;
+    settings.reuse_factorisation = o.reuse_factorisation;
     ShearBox box;
     box.solver = std::make_unique<StaticSolver>(mesh, std::vector<ElementSetMaterial>{plate, soil},
                                                 settings);

@@ -2,7 +2,8 @@
 // uninterrupted run: a fresh solver of the same model, restored from the snapshot taken after
 // increment k of the shear stage and resumed from that increment's cursor, gives every later
 // increment's tractions and the final displacements bit for bit, for the novel, Stutz and
-// Coulomb interfaces, in 2D and 3D, also when the snapshot falls inside a cut nominal step.
+// Coulomb interfaces, in 2D and 3D, also when the snapshot falls inside a cut nominal step
+// and with reused factorisations.
 #include <cstring>
 
 #include <gtest/gtest.h>
@@ -82,6 +83,16 @@ TEST(Snapshot, ResumedShearBoxMatchesTheUninterruptedRunBitForBit) {
     three.steps = 8;
     three.displacement = 0.8e-3;
     expect_resume_matches(three, 3);
+}
+
+// With reused factorisations (GMRES on the held LU) the resumed run, which holds none, still
+// takes the same path: the held factorisation lives within one increment.
+TEST(Snapshot, ResumedRunWithReusedFactorisationsMatchesBitForBit) {
+    ShearBoxOptions o;
+    o.steps = 12;
+    o.displacement = 1.2e-3;
+    o.reuse_factorisation = true;
+    expect_resume_matches(o, 5);
 }
 
 // Coarse steps get cut: a snapshot inside a nominal step resumes at its cut size and growth.
