@@ -53,6 +53,26 @@ inline void distort(Mesh& m, double amount, double h, unsigned seed = 7) {
     }
 }
 
+// One stage run on a hypoplastic block: its result, the solver's counters, and the committed
+// stress of the first element's first integration point.
+struct StageRun {
+    StageResult result;
+    SolverCounters counters;
+    std::vector<double> stress;
+};
+
+// Runs `stage` on `m` (one hypoplastic material, Karlsruhe sand, start state y0) with `s`.
+inline StageRun run_hypoplastic_stage(const Mesh& m, std::vector<double> y0,
+                                      const SolverSettings& s, const Stage& stage) {
+    StaticSolver solver(m, {material(karlsruhe(), std::move(y0))}, s);
+    StageRun out;
+    out.result = solver.run_stage(stage);
+    out.counters = solver.counters();
+    const auto y = solver.state(0, 0);
+    out.stress.assign(y.begin(), y.begin() + 6);
+    return out;
+}
+
 // Node set "n<id>" for a single node.
 inline std::string single_node_set(Mesh& m, int node) {
     const std::string name = fmt::format("n{}", node); // (GCC 12 -Wrestrict on "n" + string)

@@ -61,32 +61,20 @@ TEST(NewtonDivergence, CountsFromTheStartOfTheCurrentSolve) {
 
 namespace {
 
-struct ShearRun {
-    StageResult result;
-    SolverCounters counters;
-    std::vector<double> stress; // first integration point of the first element, committed
-};
-
 // A hypoplastic block under 60/30 kPa sheared by `shear` m (block height 1 m) in one step.
-ShearRun shear_in_one_step(bool divergence_check, double shear) {
+StageRun shear_in_one_step(bool divergence_check, double shear) {
     Mesh m = box_mesh({1.0, 0.5, 1.0, 2, 1, 2});
     distort(m, 0.1, 0.5);
     SolverSettings s;
     s.divergence_check = divergence_check;
     s.max_cuts = 10;
-    StaticSolver solver(m, {material(karlsruhe(), hypo_state({-30, -30, -60, 0, 0, 0}, 0.65))}, s);
     Stage st;
     st.steps = 1;
     st.displacements = {{"bottom", 0, 0.0}, {"bottom", 1, 0.0}, {"bottom", 2, 0.0},
                         {"front", 1, 0.0},  {"back", 1, 0.0},   {"top", 0, shear}};
     st.equal_displacements = {{"top", 2}};
     st.pressures = {{"top", 60.0, 60.0}, {"left", 30.0, 30.0}, {"right", 30.0, 30.0}};
-    ShearRun out;
-    out.result = solver.run_stage(st);
-    out.counters = solver.counters();
-    const auto y = solver.state(0, 0);
-    out.stress.assign(y.begin(), y.begin() + 6);
-    return out;
+    return run_hypoplastic_stage(m, hypo_state({-30, -30, -60, 0, 0, 0}, 0.65), s, st);
 }
 
 } // namespace
@@ -95,8 +83,8 @@ TEST(NewtonDivergence, SolverCutsEarlyAndReachesTheSameState) {
     // 2 % shear in one step: the full step and its first halvings do not converge. Without
     // the rule a diverged attempt runs all 20 iterations; with it, 6. The cut sequence is the
     // same, so the committed state is too.
-    const ShearRun on = shear_in_one_step(true, 0.02);
-    const ShearRun off = shear_in_one_step(false, 0.02);
+    const StageRun on = shear_in_one_step(true, 0.02);
+    const StageRun off = shear_in_one_step(false, 0.02);
     ASSERT_TRUE(on.result.ok) << on.result.reason;
     ASSERT_TRUE(off.result.ok) << off.result.reason;
     std::printf("early cut: %ld iterations, %ld cuts (%ld early); without: %ld, %ld\n",

@@ -113,40 +113,28 @@ TEST(ReusedFactorisation, HeldLuPreconditionsAChangedMatrix) {
 
 namespace {
 
-struct PlateRun {
-    StageResult result;
-    SolverCounters counters;
-    std::vector<double> stress;
-};
-
 // A hypoplastic block loaded by a plate from 50 to 120 kPa in 8 steps.
-PlateRun plate_run(bool reuse,
+StageRun plate_run(bool reuse,
                    double factorisation_cost = SolverSettings{}.krylov_factorisation_cost) {
     Mesh m = rectangle_mesh({1.0, 1.0, 6, 6});
     distort(m, 0.1, 1.0 / 6.0);
     SolverSettings s;
     s.reuse_factorisation = reuse;
     s.krylov_factorisation_cost = factorisation_cost;
-    StaticSolver solver(m, {material(karlsruhe(), hypo_state({-50, -50, -50, 0, 0, 0}, 0.7))}, s);
     Stage st;
     st.steps = 8;
     st.displacements = {{"left", 0, 0.0}, {"right", 0, 0.0}, {"bottom", 1, 0.0}};
     st.equal_displacements = {{"top", 1}};
     st.pressures = {{"top", 50.0, 120.0}};
-    PlateRun out;
-    out.result = solver.run_stage(st);
-    out.counters = solver.counters();
-    const auto y = solver.state(0, 0);
-    out.stress.assign(y.begin(), y.begin() + 6);
-    return out;
+    return run_hypoplastic_stage(m, hypo_state({-50, -50, -50, 0, 0, 0}, 0.7), s, st);
 }
 
 } // namespace
 
 // The same converged state (to the Newton tolerance) with far fewer factorisations.
 TEST(ReusedFactorisation, HypoplasticRunReachesTheSameStateWithFewerFactorisations) {
-    const PlateRun direct = plate_run(false);
-    const PlateRun reused = plate_run(true);
+    const StageRun direct = plate_run(false);
+    const StageRun reused = plate_run(true);
     ASSERT_TRUE(direct.result.ok) << direct.result.reason;
     ASSERT_TRUE(reused.result.ok) << reused.result.reason;
     const auto& d = direct.counters.linear;
@@ -170,9 +158,9 @@ TEST(ReusedFactorisation, HypoplasticRunReachesTheSameStateWithFewerFactorisatio
 // Krylov solve that needed a step; one priced beyond reach is kept for the whole increment
 // (a new one only at each increment start, or when GMRES fails). Both reach the direct state.
 TEST(ReusedFactorisation, FactorisationCostDecidesWhenTheHeldOneIsReplaced) {
-    const PlateRun direct = plate_run(false);
-    const PlateRun free_lu = plate_run(true, 0.0);
-    const PlateRun dear_lu = plate_run(true, 1.0e6);
+    const StageRun direct = plate_run(false);
+    const StageRun free_lu = plate_run(true, 0.0);
+    const StageRun dear_lu = plate_run(true, 1.0e6);
     ASSERT_TRUE(free_lu.result.ok) << free_lu.result.reason;
     ASSERT_TRUE(dear_lu.result.ok) << dear_lu.result.reason;
     const auto& f = free_lu.counters.linear;
@@ -182,7 +170,7 @@ TEST(ReusedFactorisation, FactorisationCostDecidesWhenTheHeldOneIsReplaced) {
     EXPECT_GT(f.numeric_factorisations, d.numeric_factorisations);
     // Priced at nothing, no two Krylov solves in a row: at least every other solve factorises.
     EXPECT_GE(2 * f.numeric_factorisations + 1, f.solves);
-    for (const PlateRun* r : {&free_lu, &dear_lu}) {
+    for (const StageRun* r : {&free_lu, &dear_lu}) {
         for (int i = 0; i < 6; ++i) {
             EXPECT_NEAR(r->stress[i], direct.stress[i], 1e-7 * std::abs(direct.stress[1])) << i;
         }
