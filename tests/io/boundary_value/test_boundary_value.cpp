@@ -3,6 +3,7 @@
 // history columns and the summary's phases, a run without contact, gravity and K0 spends
 // nothing on them, and the FE shear box agrees with the point-level interface test.
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -261,6 +262,16 @@ TEST(BoundaryValueScene, BadInputNamesFileAndKey) {
     test::expect_boundary_value_error(
         test::replaced(text, with_output, "[solver]\ndivergence_check = 1\n\n[output]"),
         "solver.divergence_check", "true or false");
+    // Reused factorisations: a switch, a tolerance in (0, 1), a step budget, a cost >= 0.
+    for (const auto& [line, key, expected] : std::vector<std::array<std::string, 3>>{
+             {"reuse_factorisation = 1", "solver.reuse_factorisation", "true or false"},
+             {"krylov_tolerance = 0.0", "solver.krylov_tolerance", "(0, 1)"},
+             {"krylov_max_iterations = 0", "solver.krylov_max_iterations", "from 1 to 1000"},
+             {"krylov_factorisation_cost = -1.0", "solver.krylov_factorisation_cost", ">= 0"}}) {
+        test::expect_boundary_value_error(
+            test::replaced(text, with_output, "[solver]\n" + line + "\n\n[output]"), key,
+            expected.c_str());
+    }
 }
 
 TEST(BoundaryValueRun, ShortRunWritesHistoryAndSummary) {
