@@ -180,6 +180,8 @@ public:
     // given (trial) stresses replaces the in-plane targets of the next evaluate(); returns the
     // largest change of a target relative to max(|s_p|, 1 kPa). 0 for pairs without targets.
     virtual double regather(const ElementStresses&) { return 0.0; }
+    // Back to the targets before the last regather (it was a probe).
+    virtual void restore_targets() {}
     // After Newton converged with sub-increments held through the increment
     // (ContactPairSpec::hold_partition): the points whose slip moved by more than
     // (partition_regrowth - 1) times the one their sub-increments were chosen for (at least the

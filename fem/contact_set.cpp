@@ -44,6 +44,12 @@ double ContactSet::regather(const ElementStresses& trial) {
     return change;
 }
 
+void ContactSet::restore_targets() {
+    for (auto& c : pairs_) {
+        c->restore_targets();
+    }
+}
+
 std::size_t ContactSet::release_outgrown_partitions() {
     std::size_t n = 0;
     for (auto& c : pairs_) {

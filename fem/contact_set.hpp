@@ -58,6 +58,8 @@ public:
     }
     // Implicit gather: the largest relative change of a target over the pairs.
     double regather(const ElementStresses& trial);
+    // Back to the targets before the last regather.
+    void restore_targets();
     // Points over all pairs whose held sub-increments were released (ContactPair).
     std::size_t release_outgrown_partitions();
     void hold_chosen_partitions();

@@ -171,7 +171,8 @@ protected:
         if (spec_.options.interface.formulation != InterfaceFormulation::novel) {
             return 0.0;
         }
-        const std::vector<Voigt6> before = local_stress_;
+        targets_before_gather_ = local_stress_;
+        const std::vector<Voigt6>& before = targets_before_gather_;
         extrapolate(stresses);
         double change = 0.0;
         for (std::size_t i = 0; i < before.size(); ++i) {
@@ -184,6 +185,12 @@ protected:
             }
         }
         return change;
+    }
+
+    void restore_targets() override {
+        if (targets_before_gather_.size() == local_stress_.size()) {
+            local_stress_ = targets_before_gather_;
+        }
     }
 
     // t_N of the last evaluation above -open_threshold: the band runs on its own targets.
@@ -378,7 +385,8 @@ private:
     std::optional<FailedContactPoint> last_failure_; // of the last evaluate()
     std::vector<double> relax_; // per point: share lambda of the continuum's in-plane targets
     std::vector<int> calm_;     // per point: increments since its last relaxation
-    double k_lo_ = 0.5;         // 1 - sin(kappa phi_c): at-rest bounds of the in-plane targets
+    std::vector<Voigt6> targets_before_gather_; // local_stress_ before the last regather
+    double k_lo_ = 0.5; // 1 - sin(kappa phi_c): at-rest bounds of the in-plane targets
     // Per point, within the current increment: the equal sub-increments held (0: none yet)
     // and the slip (dg1, dg2) they were chosen for (ContactPairSpec::hold_partition).
     std::vector<double> held_count_, held_slip_;

@@ -61,6 +61,7 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
     // iterate: the iteration budget is per solve (a budget shared with the gathers ended
     // increments that had converged to 1e-10 twice and were restarted by a gather).
     int solve_start = 0;
+    bool early_gathered = false; // this solve's early gather done
     for (int it = 0;; ++it) {
         // The contacts' last evaluation is this iterate's: their sub-increment choices hold.
         contacts_.hold_chosen_partitions();
@@ -79,6 +80,23 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
         const bool stagnated = !converged && settings_.stagnation_tolerance > 0.0 &&
                                it - solve_start >= 3 && rel <= settings_.stagnation_tolerance &&
                                rel > 0.5 * r[r.size() - 4];
+        // Early gather (SolverSettings::early_gather_residual): targets that would move are
+        // gathered before the last digits are converged with them.
+        if (!converged && !stagnated && !early_gathered && it > solve_start &&
+            rel <= settings_.early_gather_residual) {
+            early_gathered = true;
+            error.clear();
+            if (!targets_settled(info, error, true)) {
+                if (!error.empty() || !residual_pass(t_end, du_, error)) {
+                    return false;
+                }
+                rel = norm2(residual_) / reference_force_;
+                last_correction = std::numeric_limits<double>::infinity();
+                solve_start = it + 1;
+                early_gathered = false;
+                continue;
+            }
+        }
         if (converged || stagnated) {
             // A line-search trial that failed before a smaller step succeeded left its message
             // in error: only targets_settled may speak now.
@@ -96,6 +114,7 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
                 rel = norm2(residual_) / reference_force_;
                 last_correction = std::numeric_limits<double>::infinity();
                 solve_start = it + 1;
+                early_gathered = false;
                 continue;
             }
             if (stagnated) {
@@ -318,16 +337,21 @@ bool StaticSolver::partitions_released(IncrementInfo& info) {
     return true;
 }
 
-bool StaticSolver::targets_settled(IncrementInfo& info, std::string& error) {
+bool StaticSolver::targets_settled(IncrementInfo& info, std::string& error, bool probe) {
     if (contacts_.empty() || settings_.max_gathers <= 0) {
         return true;
     }
     const double change = contacts_.regather(stresses(true));
-    info.gather_change = change;
     if (change <= settings_.gather_tolerance) {
+        if (probe) {
+            contacts_.restore_targets(); // the solve goes on undisturbed
+            return true;
+        }
+        info.gather_change = change;
         counters_.worst_gather_change = std::max(counters_.worst_gather_change, change);
         return true;
     }
+    info.gather_change = change;
     if (info.gathers >= settings_.max_gathers) {
         error = fmt::format("the in-plane stresses gathered from the continuum (Eqs. 14-16) did "
                             "not settle in {} gathers (last change {:.2e} of their size)",

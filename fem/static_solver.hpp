@@ -265,8 +265,9 @@ private:
     // the sparse pattern when the stage's DOF map or a pairing changed.
     void begin_contacts(bool dofs_changed);
     ElementStresses stresses(bool trial) const;
-    // After Newton converged: re-gathers the in-plane targets; true when they settled.
-    bool targets_settled(IncrementInfo& info, std::string& error);
+    // After Newton converged: re-gathers the in-plane targets; true when they settled. A
+    // probe (the early gather) keeps the old targets when they settled.
+    bool targets_settled(IncrementInfo& info, std::string& error, bool probe = false);
     // After Newton converged with held sub-increments (ContactPairSpec::hold_partition): true
     // when points whose slip outgrew theirs were released, so that one more solve runs with
     // sub-increments chosen for the converged slip (at most max_partition_solves per increment;

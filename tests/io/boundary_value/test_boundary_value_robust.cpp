@@ -100,6 +100,30 @@ TEST(RefinedShearBox, OneCoarseIncrementIsAccurateWithTheImplicitGather) {
     EXPECT_GT(explicit_error, 4.0 * std::abs(implicit - reference));
 }
 
+// The early gather (solver.early_gather_residual) checks the in-plane targets once a solve is
+// near its solution and starts the next solve there when they moved: the 4 x 2 box then needs
+// fewer Newton iterations (217 against 264 when measured) and ends in the same shear within
+// 1e-4 of the peak (4e-6 measured). A probe that settled must leave the targets alone: applying its
+// small change disturbed the converging solve and cost iterations (326).
+TEST(RefinedShearBox, EarlyGatherSavesIterationsAndKeepsTheResult) {
+    const fs::path late =
+        run_box("box-gather-late",
+                short_path({"body.1.elements=[4, 2]", "solver.early_gather_residual=0"}));
+    const fs::path early = run_box("box-gather-early", short_path({"body.1.elements=[4, 2]"}));
+    const auto s_late = test::summary(late), s_early = test::summary(early);
+    ASSERT_EQ(s_late["status"], "ok");
+    ASSERT_EQ(s_early["status"], "ok");
+    EXPECT_GT(s_early["counters"]["gathers"].get<long>(), 0);
+    EXPECT_LT(s_early["counters"]["newton_iterations"].get<double>(),
+              0.9 * s_late["counters"]["newton_iterations"].get<double>());
+    const auto h_late = test::read_history(late), h_early = test::read_history(early);
+    ASSERT_EQ(h_late.rows.size(), h_early.rows.size());
+    const double peak = peak_shear(h_late);
+    for (std::size_t k = 0; k < h_late.rows.size(); ++k) {
+        EXPECT_NEAR(h_early.number(k, "t_t1"), h_late.number(k, "t_t1"), 1.0e-4 * peak) << k;
+    }
+}
+
 // The continuum interface follows a contact that unloads to zero: t_N ends above
 // -open_threshold (open: the band sheared at the threshold, its traction scaled by
 // |t_N| / threshold), where Algorithm 1 used to fail at t_N between -30 and -0.5 kPa.
