@@ -7,6 +7,7 @@ component, deformed with scaled displacements. Paper Fig. 13 is
 
 Usage: plot_section.py RUN_DIR --out PNG [--normal x|y|z] [--at COORD]
        [--components 13 11 33] [--increment N | --time T] [--scale S] [--material NAME]
+       [--change-from-time T0]
 (/usr/bin/python3 with Debian's python3-meshio and python3-matplotlib).
 """
 import argparse
@@ -80,6 +81,8 @@ def main():
     group.add_argument("--time", type=float, help="the first output at or after this time")
     ap.add_argument("--scale", type=float, default=20.0, help="displacement magnification")
     ap.add_argument("--material", help="draw only the elements of this [material] name")
+    ap.add_argument("--change-from-time", type=float, metavar="T0",
+                    help="draw the change of stress since the first output at or after T0")
     a = ap.parse_args()
 
     pvd = a.run_dir / "mesh.pvd"
@@ -91,6 +94,12 @@ def main():
     if not any(c.type == "hexahedron" for c in mesh.cells):
         sys.exit("plot_section: 3D (hexahedron) meshes only; plot_fields.py draws 2D runs")
     stress = np.concatenate([s for s in mesh.cell_data["stress"]])
+    since = ""
+    if a.change_from_time is not None:
+        t0, file0 = pick(datasets(pvd), None, a.change_from_time)
+        before = meshio.read(a.run_dir / file0)
+        stress = stress - np.concatenate([s for s in before.cell_data["stress"]])
+        since = f" since time {t0:g}"
     keep = np.ones(len(stress), dtype=bool)
     if a.material:
         names = json.loads((a.run_dir / "summary.json").read_text())["fields"]["materials"]
@@ -117,10 +126,10 @@ def main():
         ax.add_collection(poly)
         ax.autoscale()
         ax.set_aspect("equal")
-        fig.colorbar(poly, ax=ax, label=f"σ{comp} (kPa)", shrink=0.8)
+        fig.colorbar(poly, ax=ax, label=f"{'Δ' if since else ''}σ{comp} (kPa)", shrink=0.8)
         ax.set_xlabel(f"{AXES[inplane[0]]} (m)")
         ax.set_ylabel(f"{AXES[inplane[1]]} (m)")
-        ax.set_title(f"σ{comp}")
+        ax.set_title(f"{'Δ' if since else ''}σ{comp}{since}")
     fig.suptitle(f"{a.run_dir.name}: increment {increment}, time {time:g}, plane "
                  f"{a.normal} = {a.at:g}; displacements × {a.scale:g}")
     fig.tight_layout()
