@@ -6,6 +6,7 @@
 // (made by make_contact_pair, fem/contact_pair.cpp).
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -188,9 +189,14 @@ protected:
     }
 
     void restore_targets() override {
-        if (targets_before_gather_.size() == local_stress_.size()) {
-            local_stress_ = targets_before_gather_;
+        // Only right after regather (the same pairing): the copy is dropped once used. A pair
+        // whose regather changed nothing (not the novel formulation) holds none.
+        if (targets_before_gather_.empty()) {
+            return;
         }
+        assert(targets_before_gather_.size() == local_stress_.size());
+        local_stress_.swap(targets_before_gather_);
+        targets_before_gather_.clear();
     }
 
     // t_N of the last evaluation above -open_threshold: the band runs on its own targets.

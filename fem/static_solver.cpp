@@ -351,6 +351,12 @@ bool StaticSolver::targets_settled(IncrementInfo& info, std::string& error, bool
         counters_.worst_gather_change = std::max(counters_.worst_gather_change, change);
         return true;
     }
+    if (probe && info.gathers >= settings_.max_gathers) {
+        // Out of gathers: the probe's unconverged iterate must not cut the increment; the
+        // gather at convergence decides, as without the probe.
+        contacts_.restore_targets();
+        return true;
+    }
     info.gather_change = change;
     if (info.gathers >= settings_.max_gathers) {
         error = fmt::format("the in-plane stresses gathered from the continuum (Eqs. 14-16) did "

@@ -36,11 +36,20 @@ def datasets(pvd):
     return [(float(d.get("timestep")), d.get("file")) for d in root.iter("DataSet")]
 
 
+def output_number(file):
+    m = re.search(r"-(\d+)\.vtu$", file)
+    if not m:
+        sys.exit(f"plot_section: {file}: not an ifsim field file name (NAME-NNNNNN.vtu)")
+    return int(m.group(1))
+
+
 def pick(entries, increment, time):
     """The output of an increment, the first at or after a time, or the last one."""
+    if not entries:
+        sys.exit("plot_section: the collection lists no output")
     if increment is not None:
         for t, file in entries:
-            if int(re.search(r"-(\d+)\.vtu$", file).group(1)) == increment:
+            if output_number(file) == increment:
                 return t, file
         sys.exit(f"plot_section: no output of increment {increment}")
     if time is not None:
@@ -52,21 +61,45 @@ def pick(entries, increment, time):
     return entries[-1]
 
 
+def hexahedron_cells(mesh):
+    """The hexahedra of all cell blocks and, per hexahedron, its index into the joined cell
+    data of all blocks (cell data is stored per block)."""
+    blocks, index, offset = [], [], 0
+    for c in mesh.cells:
+        if c.type == "hexahedron":
+            blocks.append(c.data)
+            index.append(np.arange(offset, offset + len(c.data)))
+        offset += len(c.data)
+    if not blocks:
+        return np.empty((0, 8), dtype=int), np.empty(0, dtype=int)
+    return np.concatenate(blocks), np.concatenate(index)
+
+
 def section_faces(mesh, normal, at, keep):
-    """(element index, 4 node ids) of every hexahedron face lying in the plane."""
-    hexes = np.concatenate([c.data for c in mesh.cells if c.type == "hexahedron"])
+    """(cell index into the joined cell data, 4 node ids) of every hexahedron face lying in the
+    plane; where the plane runs between two elements, the face of the one on its + side."""
+    hexes, cells = hexahedron_cells(mesh)
     coord = mesh.points[:, normal]
     tol = 1e-6 * max(np.ptp(mesh.points, axis=0).max(), 1.0)
     on_plane = np.abs(coord - at) <= tol
-    faces = []
-    for e, nodes in enumerate(hexes):
-        if not keep[e]:
+    faces = {}
+    for nodes, cell in zip(hexes, cells):
+        if not keep[cell]:
             continue
         for f in HEX_FACES:
             ids = nodes[list(f)]
             if on_plane[ids].all():
-                faces.append((e, ids))
-    return faces
+                key = frozenset(int(i) for i in ids)
+                plus_side = coord[nodes].mean() > at
+                if key not in faces or plus_side:
+                    faces[key] = (cell, ids)
+    return list(faces.values())
+
+
+def cell_array(mesh, name, file):
+    if name not in mesh.cell_data:
+        sys.exit(f"plot_section: {file} has no cell array {name!r}")
+    return np.concatenate(list(mesh.cell_data[name]))
 
 
 def main():
@@ -90,22 +123,22 @@ def main():
         sys.exit(f"plot_section: {pvd} not found (run with --fields or [output] fields)")
     time, file = pick(datasets(pvd), a.increment, a.time)
     mesh = meshio.read(a.run_dir / file)
-    increment = int(re.search(r"-(\d+)\.vtu$", file).group(1))
+    increment = output_number(file)
     if not any(c.type == "hexahedron" for c in mesh.cells):
         sys.exit("plot_section: 3D (hexahedron) meshes only; plot_fields.py draws 2D runs")
-    stress = np.concatenate([s for s in mesh.cell_data["stress"]])
+    stress = cell_array(mesh, "stress", file)
     since = ""
     if a.change_from_time is not None:
         t0, file0 = pick(datasets(pvd), None, a.change_from_time)
         before = meshio.read(a.run_dir / file0)
-        stress = stress - np.concatenate([s for s in before.cell_data["stress"]])
+        stress = stress - cell_array(before, "stress", file0)
         since = f" since time {t0:g}"
     keep = np.ones(len(stress), dtype=bool)
     if a.material:
         names = json.loads((a.run_dir / "summary.json").read_text())["fields"]["materials"]
         if a.material not in names:
             sys.exit(f"plot_section: no material {a.material!r}; the run has {names}")
-        keep = np.concatenate([m for m in mesh.cell_data["material"]]) == names.index(a.material)
+        keep = cell_array(mesh, "material", file) == names.index(a.material)
 
     normal = AXES.index(a.normal)
     faces = section_faces(mesh, normal, a.at, keep)
@@ -113,6 +146,8 @@ def main():
         sys.exit(f"plot_section: no element face lies in the plane {a.normal} = {a.at:g} "
                  "(the plane must pass through a layer of nodes)")
     inplane = [i for i in range(3) if i != normal]
+    if "displacement" not in mesh.point_data:
+        sys.exit(f"plot_section: {file} has no point array 'displacement'")
     x = mesh.points + a.scale * mesh.point_data["displacement"]
     polygons = np.array([x[ids][:, inplane] for _, ids in faces])
     elements = np.array([e for e, _ in faces])

@@ -268,7 +268,8 @@ TEST(BoundaryValueScene, BadInputNamesFileAndKey) {
              {"krylov_tolerance = 0.0", "solver.krylov_tolerance", "(0, 1)"},
              {"krylov_max_iterations = 0", "solver.krylov_max_iterations", "from 1 to 1000"},
              {"krylov_factorisation_cost = -1.0", "solver.krylov_factorisation_cost", ">= 0"},
-             {"early_gather_residual = 1.0", "solver.early_gather_residual", "[0, 1)"}}) {
+             {"early_gather_residual = 1.0", "solver.early_gather_residual", "[0, 1)"},
+             {"early_gather_residual = -1e-5", "solver.early_gather_residual", "[0, 1)"}}) {
         test::expect_boundary_value_error(
             test::replaced(text, with_output, "[solver]\n" + line + "\n\n[output]"), key,
             expected.c_str());

@@ -124,6 +124,21 @@ TEST(RefinedShearBox, EarlyGatherSavesIterationsAndKeepsTheResult) {
     }
 }
 
+// A probe that finds the targets settled is undone: with a gather tolerance no change reaches,
+// every probe settles, and the run is the run without probes bit for bit.
+TEST(RefinedShearBox, SettledEarlyGatherLeavesTheRunUnchanged) {
+    const std::vector<std::string> base = {"body.1.elements=[4, 2]", "stage.2.steps=20",
+                                           "solver.gather_tolerance=0.999"};
+    auto without = base, with = base;
+    without.push_back("solver.early_gather_residual=0");
+    with.push_back("solver.early_gather_residual=1e-3");
+    const fs::path a = run_box("box-probe-off", short_path(without));
+    const fs::path b = run_box("box-probe-settled", short_path(with));
+    EXPECT_EQ(test::read_text(a / "history.csv"), test::read_text(b / "history.csv"));
+    EXPECT_EQ(test::summary(a)["counters"]["newton_iterations"],
+              test::summary(b)["counters"]["newton_iterations"]);
+}
+
 // The continuum interface follows a contact that unloads to zero: t_N ends above
 // -open_threshold (open: the band sheared at the threshold, its traction scaled by
 // |t_N| / threshold), where Algorithm 1 used to fail at t_N between -30 and -0.5 kPa.
