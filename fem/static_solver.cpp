@@ -62,6 +62,18 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
     // increments that had converged to 1e-10 twice and were restarted by a gather).
     int solve_start = 0;
     bool early_gathered = false; // this solve's early gather done
+    // New targets or sub-increments: the residual of the same displacements with them starts
+    // another solve after iteration it.
+    const auto restart_solve = [&](int it) {
+        if (!residual_pass(t_end, du_, error)) {
+            return false;
+        }
+        rel = norm2(residual_) / reference_force_;
+        last_correction = std::numeric_limits<double>::infinity();
+        solve_start = it + 1;
+        early_gathered = false;
+        return true;
+    };
     for (int it = 0;; ++it) {
         // The contacts' last evaluation is this iterate's: their sub-increment choices hold.
         contacts_.hold_chosen_partitions();
@@ -87,13 +99,9 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
             early_gathered = true;
             error.clear();
             if (!targets_settled(info, error, true)) {
-                if (!error.empty() || !residual_pass(t_end, du_, error)) {
+                if (!error.empty() || !restart_solve(it)) {
                     return false;
                 }
-                rel = norm2(residual_) / reference_force_;
-                last_correction = std::numeric_limits<double>::infinity();
-                solve_start = it + 1;
-                early_gathered = false;
                 continue;
             }
         }
@@ -106,15 +114,9 @@ bool StaticSolver::solve_increment(double t_begin, double t_end, IncrementInfo& 
                 return false; // the targets did not settle in max_gathers
             }
             if (!settled || partitions_released(info)) {
-                // New targets, or sub-increments chosen again: the residual of the same
-                // displacements with them starts another solve.
-                if (!residual_pass(t_end, du_, error)) {
+                if (!restart_solve(it)) {
                     return false;
                 }
-                rel = norm2(residual_) / reference_force_;
-                last_correction = std::numeric_limits<double>::infinity();
-                solve_start = it + 1;
-                early_gathered = false;
                 continue;
             }
             if (stagnated) {
