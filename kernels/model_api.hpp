@@ -65,6 +65,9 @@ struct IntegrationSettings {
     // strain only) on its own, to the tolerance, inside each substep of the stress
     // (kernels/explicit_integration.hpp); false: all of the state in one scheme.
     bool split_internal = true;
+    // Sanisand only: backward-Euler steps (kernels/sanisand_implicit.hpp) instead of explicit
+    // substeps; the scene readers reject it for the other models.
+    bool backward_euler = false;
     double min_substep = 1.0e-9;  // smallest substep, as a fraction of the increment
     int max_substeps = 200000;    // guard against runaway step collapse
     double min_pressure = 1.0e-3; // kPa; below this mean stress the tension cut-off acts

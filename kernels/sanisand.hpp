@@ -15,6 +15,7 @@
 
 #include "kernels/explicit_integration.hpp"
 #include "kernels/model_api.hpp"
+#include "kernels/sanisand_implicit.hpp"
 #include "kernels/sanisand_params.hpp"
 #include "kernels/sanisand_rates.hpp"
 
@@ -307,6 +308,10 @@ struct Sanisand {
     static void integrate(const Params& P, const IntegrationSettings& s,
                           const SubstepControl<T>& control, State<T>& y, const Sym<T>& deps,
                           UpdateStats<T>& stats) {
+        if (s.backward_euler) {
+            integrate_implicit(P, s, control, y, deps, stats);
+            return;
+        }
         using Mask = simd::mask_t<T>;
         const Mask fixed = control.fixed_substeps > 0.5;
         consistent_start(P, s, y);
@@ -318,6 +323,62 @@ struct Sanisand {
         }
         // Runaway: not finished within max_substeps attempts.
         stats.status = simd::select(active, T(lane_status::failed), stats.status);
+    }
+
+    // Most halvings of an increment whose backward-Euler step did not converge (1..32 equal
+    // steps) before the explicit scheme takes it.
+    static constexpr int implicit_halvings = 5;
+
+    // Backward-Euler integration: N equal steps, N = 1 (adaptive lanes; doubled while a step
+    // fails) or the control's fixed number (perturbed lanes follow their base). Lanes that find
+    // no converged implicit path are integrated by the explicit scheme; a fixed lane among them
+    // is flagged unreliable, since it then leaves its base's discretisation.
+    template <class T>
+    static void integrate_implicit(const Params& P, const IntegrationSettings& s,
+                                   const SubstepControl<T>& control, State<T>& y,
+                                   const Sym<T>& deps, UpdateStats<T>& stats) {
+        using Mask = simd::mask_t<T>;
+        const Mask fixed = control.fixed_substeps > 0.5;
+        consistent_start(P, s, y);
+        const State<T> y0 = y;
+        T pieces = simd::select(fixed, simd::max(control.fixed_substeps, T(1.0)), T(1.0));
+        Mask todo(true);
+        for (int level = 0; level <= implicit_halvings && simd::any(todo); ++level) {
+            State<T> yl = y0;
+            Mask ok = todo;
+            const Sym<T> de = voigt::scale(deps, 1.0 / pieces);
+            for (int i = 0; simd::any(ok && (T(static_cast<double>(i)) < pieces)); ++i) {
+                const Mask step = ok && (T(static_cast<double>(i)) < pieces);
+                const sanisand::BeResult<T> r = sanisand::be_step(P, s, yl, de, step);
+                stats.rate_evaluations += r.residual_evaluations;
+                yl = select_state<T, n_state>(step && r.ok, r.y, yl);
+                ok = ok && (!step || r.ok);
+            }
+            y = select_state<T, n_state>(todo && ok, yl, y);
+            stats.substeps = simd::select(todo && ok, pieces, stats.substeps);
+            stats.rejected += simd::select(todo && !ok, T(1.0), T(0.0));
+            todo = todo && !ok && !fixed;
+            pieces = simd::select(todo, 2.0 * pieces, pieces);
+            if (level == implicit_halvings) {
+                break;
+            }
+        }
+        // fixed lanes that failed are still at y0 with no substeps counted
+        const Mask fallback = todo || (fixed && (stats.substeps < 0.5));
+        if (simd::any(fallback)) {
+            State<T> ye = y0;
+            UpdateStats<T> es;
+            IntegrationSettings explicit_settings = s;
+            explicit_settings.backward_euler = false;
+            integrate(P, explicit_settings, SubstepControl<T>{}, ye, deps, es);
+            y = select_state<T, n_state>(fallback, ye, y);
+            stats.substeps = simd::select(fallback, es.substeps, stats.substeps);
+            stats.rejected += simd::select(fallback, es.rejected, T(0.0));
+            stats.rate_evaluations += simd::select(fallback, es.rate_evaluations, T(0.0));
+            const T st =
+                simd::select(fixed, simd::min(es.status, T(lane_status::unreliable)), es.status);
+            stats.status = simd::select(fallback, simd::min(stats.status, st), stats.status);
+        }
     }
 
     // Continuum elastoplastic tangent at y for the loading branch selected by deps:

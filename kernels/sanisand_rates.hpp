@@ -79,6 +79,8 @@ struct Plastic {
     T D;         // dilatancy (positive = contraction)
     T Kp;        // plastic modulus (2/3) p h (b:n)
     T h;         // hardening coefficient
+    T b0;        // h times its denominator (alpha - alpha_in):n
+    T h_denom;   // (alpha - alpha_in):n, not floored
     Sym<T> b;    // alpha^b - alpha
     T n_Rdev;    // n : Rdev (= 1 for unclipped Lode angles)
 };
@@ -109,6 +111,8 @@ Plastic<T> plastic(const SanisandParams& P, const Point<T>& q, const State<T>& y
     const T b0 = P.G0 * P.h0 * simd::max(1.0 - P.c_h * q.e, T(1.0e-3)) / simd::sqrt(q.p / P.p_a);
     const Sym<T> alpha_in = sym_at(y, alpha_in_index);
     const T denom = voigt::ddot(voigt::sub(q.alpha, alpha_in), n);
+    k.b0 = b0;
+    k.h_denom = denom;
     k.h = b0 / simd::max(denom, T(h_denominator_min));
     k.Kp = (2.0 / 3.0) * q.p * k.h * b_n;
     // dilatancy with fabric, Eq. 35: A_d = kappa A0 (1 + <z:n>)

@@ -96,6 +96,7 @@ const std::vector<std::string_view>& boundary_value_interface_keys() {
                                                        "back_stress",
                                                        "fabric",
                                                        "model_tolerance",
+                                                       "model_integration",
                                                        "newton_jacobian",
                                                        "jacobian_tolerance",
                                                        "polish_iterations",
@@ -142,9 +143,9 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     out.formulation = read_interface_formulation(t);
     const InterfaceFormulationSpec& f = out.formulation;
     if (f.is_coulomb()) {
-        constexpr std::string_view algorithm1_keys[] = {"model_tolerance",    "newton_jacobian",
-                                                        "jacobian_tolerance", "polish_iterations",
-                                                        "adaptive_partition", "defer_jacobian"};
+        constexpr std::string_view algorithm1_keys[] = {
+            "model_tolerance",   "model_integration",  "newton_jacobian", "jacobian_tolerance",
+            "polish_iterations", "adaptive_partition", "defer_jacobian"};
         t.reject(algorithm1_keys, algorithm1_key_with_coulomb);
         constexpr std::string_view viscosity_key[] = {"slip_viscosity", "slip_viscosity_use"};
         t.reject(viscosity_key, "regularises a continuum interface band past its peak; "
@@ -166,6 +167,14 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     // The inner solves' tolerances set the noise of the Eq. 37 differences (docs/interface.md).
     InterfaceSettings& is = pair.options.interface;
     is.model.tolerance = t.number_or("model_tolerance", is.model.tolerance, Bounds::open(0.0, 1.0));
+    // Backward-Euler steps instead of explicit substeps: Sanisand only
+    // (kernels/sanisand_implicit.hpp).
+    is.model.backward_euler =
+        t.choice_or("model_integration", "explicit", {"explicit", "implicit"}) == "implicit";
+    if (is.model.backward_euler && !std::holds_alternative<SanisandParams>(f.material.choice)) {
+        t.fail("model_integration", "\"explicit\" with this interface model (backward-Euler "
+                                    "steps exist for model \"sanisand\" only)");
+    }
     is.newton_jacobian = t.choice_or("newton_jacobian", "rate", {"rate", "perturbation"}) == "rate"
                              ? NewtonJacobian::rate
                              : NewtonJacobian::perturbation;

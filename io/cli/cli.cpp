@@ -242,6 +242,9 @@ int run_cli(int argc, const char* const* argv) {
     bench_cmd->add_flag("--no-split", bench.no_split,
                         "Integrate hypoplasticity's h with the stress in one scheme (the "
                         "scheme before the split; default: h on its own in each substep)");
+    bench_cmd->add_flag("--implicit", bench.implicit,
+                        "Sanisand only: backward-Euler steps (one per update, halved where one "
+                        "does not converge) instead of explicit substeps");
     bench_cmd->add_flag("--cold", bench.cold,
                         "Every repetition starts without a carried substep size (as the first "
                         "increment of a run); default: from the size the warm-up ended with");

@@ -40,6 +40,7 @@ Timing time_updates(const typename M::Params& params, const KernelBenchOptions& 
     opt.settings.scheme = o.scheme == "heun" ? IntegrationScheme::heun : IntegrationScheme::rkf23;
     opt.settings.tolerance = o.tolerance;
     opt.settings.split_internal = !o.no_split;
+    opt.settings.backward_euler = o.implicit;
 
     Timing t;
     t.last = batched_update(mp, params, opt); // warm-up, untimed
@@ -123,6 +124,12 @@ nlohmann::ordered_json run_kernel_bench(const KernelBenchOptions& o) {
         throw std::invalid_argument("--model coulomb: Coulomb friction is an interface model; "
                                     "expected --formulation coulomb with it");
     }
+    if (o.implicit && o.model != "sanisand") {
+        throw std::invalid_argument(fmt::format(
+            "--implicit: backward-Euler steps exist for Sanisand only; expected --model "
+            "sanisand, got \"{}\"",
+            o.model));
+    }
     const MaterialChoice material = kernel_bench_material(o);
     const ThreadLimit threads(o.threads);
     const Timing t = std::visit(
@@ -146,6 +153,7 @@ nlohmann::ordered_json run_kernel_bench(const KernelBenchOptions& o) {
     j["strain_increment"] = o.strain_increment;
     j["committed"] = false;
     j["scheme"] = o.scheme;
+    j["implicit"] = o.implicit;
     j["tolerance"] = o.tolerance;
     j["carried_substep"] = !o.cold;
     j["split_internal"] = !o.no_split;

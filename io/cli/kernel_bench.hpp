@@ -31,6 +31,7 @@ struct KernelBenchOptions {
     double tolerance = 1.0e-3;    // relative local error of one substep
     bool cold = false;            // no carried substep size in the timed repetitions
     bool no_split = false;        // h integrated with the stress (IntegrationSettings)
+    bool implicit = false;        // Sanisand: backward-Euler steps (kernels/sanisand_implicit.hpp)
     // Interface formulations (interface_kernel_bench.hpp):
     std::string jacobian = "perturbation"; // perturbation | full-perturbation | analytical
     std::string subincrement = "fixed";    // fixed | adaptive

@@ -120,6 +120,24 @@ TEST(BoundaryValueScene, AdaptivePartitionKey) {
         "interface.adaptive_partition", "\"increment\" | \"iteration\"");
 }
 
+// model_integration: backward-Euler steps reach a Sanisand pair's model settings; a
+// hypoplastic pair refuses them, naming the key.
+TEST(BoundaryValueScene, ImplicitModelIntegrationOnlyForSanisand) {
+    EXPECT_FALSE(test::parse_boundary_value(cnl_2d)
+                     .contacts.at(0)
+                     .pair.options.interface.model.backward_euler);
+    EXPECT_TRUE(test::parse_boundary_value(cnl_2d, {"interface.model=\"sanisand\"",
+                                                    "interface.parameters=\"karlsruhe-sand\"",
+                                                    "interface.model_integration=\"implicit\""})
+                    .contacts.at(0)
+                    .pair.options.interface.model.backward_euler);
+    const std::string text = test::read_text(cnl_2d);
+    test::expect_boundary_value_error(
+        test::replaced(text, "roughness = 0.9",
+                       "roughness = 0.9\nmodel_integration = \"implicit\""),
+        "interface.model_integration", "\"explicit\" with this interface model");
+}
+
 // polish_iterations (Algorithm 1's Newton corrections after its tolerance is met) reaches the
 // pair's interface settings; the keys that tune Algorithm 1 are refused with Coulomb friction
 // (they were read and ignored before), naming the key.
@@ -136,8 +154,9 @@ TEST(BoundaryValueScene, PolishIterationsKeyAndInnerSolveKeysRefusedWithCoulomb)
         test::replaced(text, "roughness = 0.9", "roughness = 0.9\npolish_iterations = 11"),
         "interface.polish_iterations", "10");
     const std::string coulomb = test::read_text("scenes/fe-simple-shear-coulomb-2d.toml");
-    for (const char* key : {"model_tolerance = 1e-5", "polish_iterations = 2",
-                            "adaptive_partition = \"iteration\"", "defer_jacobian = true"}) {
+    for (const char* key :
+         {"model_tolerance = 1e-5", "model_integration = \"implicit\"", "polish_iterations = 2",
+          "adaptive_partition = \"iteration\"", "defer_jacobian = true"}) {
         const std::string name = std::string(key).substr(0, std::string(key).find(' '));
         test::expect_boundary_value_error(
             test::replaced(coulomb, "formulation = \"coulomb\"",
