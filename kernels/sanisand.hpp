@@ -330,19 +330,24 @@ struct Sanisand {
     static constexpr int implicit_halvings = 5;
 
     // Backward-Euler integration: N equal steps, N = 1 (adaptive lanes; doubled while a step
-    // fails) or the control's fixed number (perturbed lanes follow their base). Lanes that find
-    // no converged implicit path are integrated by the explicit scheme; a fixed lane among them
-    // is flagged unreliable, since it then leaves its base's discretisation.
+    // fails) or the control's fixed number (perturbed lanes follow their base). Adaptive lanes
+    // that find no converged implicit path are integrated by the explicit scheme. A fixed count
+    // above 2^implicit_halvings is an explicit base's substep count: such lanes follow it
+    // explicitly. A fixed lane whose implicit steps fail is reported failed, so a difference
+    // quotient never mixes the two schemes.
     template <class T>
     static void integrate_implicit(const Params& P, const IntegrationSettings& s,
                                    const SubstepControl<T>& control, State<T>& y,
                                    const Sym<T>& deps, UpdateStats<T>& stats) {
         using Mask = simd::mask_t<T>;
         const Mask fixed = control.fixed_substeps > 0.5;
+        const Mask explicit_fixed =
+            fixed && (control.fixed_substeps > static_cast<double>(1 << implicit_halvings));
         consistent_start(P, s, y);
         const State<T> y0 = y;
         T pieces = simd::select(fixed, simd::max(control.fixed_substeps, T(1.0)), T(1.0));
-        Mask todo(true);
+        Mask todo = !explicit_fixed;
+        Mask fixed_failed(false);
         for (int level = 0; level <= implicit_halvings && simd::any(todo); ++level) {
             State<T> yl = y0;
             Mask ok = todo;
@@ -357,28 +362,27 @@ struct Sanisand {
             y = select_state<T, n_state>(todo && ok, yl, y);
             stats.substeps = simd::select(todo && ok, pieces, stats.substeps);
             stats.rejected += simd::select(todo && !ok, T(1.0), T(0.0));
+            fixed_failed = fixed_failed || (todo && !ok && fixed);
             todo = todo && !ok && !fixed;
             pieces = simd::select(todo, 2.0 * pieces, pieces);
-            if (level == implicit_halvings) {
-                break;
-            }
         }
-        // fixed lanes that failed are still at y0 with no substeps counted
-        const Mask fallback = todo || (fixed && (stats.substeps < 0.5));
+        const Mask fallback = todo || explicit_fixed;
         if (simd::any(fallback)) {
             State<T> ye = y0;
             UpdateStats<T> es;
             IntegrationSettings explicit_settings = s;
             explicit_settings.backward_euler = false;
-            integrate(P, explicit_settings, SubstepControl<T>{}, ye, deps, es);
+            const SubstepControl<T> ec{simd::select(explicit_fixed, control.fixed_substeps, T(0.0)),
+                                       control.initial_substep};
+            integrate(P, explicit_settings, ec, ye, deps, es);
             y = select_state<T, n_state>(fallback, ye, y);
             stats.substeps = simd::select(fallback, es.substeps, stats.substeps);
             stats.rejected += simd::select(fallback, es.rejected, T(0.0));
             stats.rate_evaluations += simd::select(fallback, es.rate_evaluations, T(0.0));
-            const T st =
-                simd::select(fixed, simd::min(es.status, T(lane_status::unreliable)), es.status);
-            stats.status = simd::select(fallback, simd::min(stats.status, st), stats.status);
+            stats.status = simd::select(fallback, simd::min(stats.status, es.status), stats.status);
         }
+        y = select_state<T, n_state>(fixed_failed, y0, y);
+        stats.status = simd::select(fixed_failed, T(lane_status::failed), stats.status);
     }
 
     // Continuum elastoplastic tangent at y for the loading branch selected by deps:

@@ -102,7 +102,8 @@ BeVector<T> be_residual(const SanisandParams& P, const IntegrationSettings& s, c
     }
     const T kk = (2.0 / 3.0) * dG * k.b0;
     const T d = k.h_denom;
-    const T inv_w = 1.0 / simd::max(simd::abs(d) + kk, T(1.0e-300));
+    // |kk|: an iterate with dGamma < 0 must not put a pole into the weight (roots unchanged)
+    const T inv_w = 1.0 / simd::max(simd::abs(d) + simd::abs(kk), T(1.0e-300));
     const T tr_a = (x[6] + x[7] + x[8]) * (1.0 / 3.0);
     const Sym<T> zdev = voigt::deviator(sym_at(y, z_index));
     const T tr_z = (x[12] + x[13] + x[14]) * (1.0 / 3.0);
@@ -246,7 +247,9 @@ BeResult<T> be_step(const SanisandParams& P, const IntegrationSettings& s, const
             out.residual_evaluations += simd::select(working, T(be_unknowns), T(0.0));
             BeVector<T> dx = r;
             const Mask solved = dense_solve<T, be_unknowns>(J, dx);
-            Mask failed = working && !solved;
+            // a singular Jacobian at a met tolerance (kinks after a reversal) keeps the iterate
+            done = done || (working && met && !solved);
+            Mask failed = working && !solved && !met;
             // A lane that met the tolerance takes one full correction more and stops.
             const Mask polish = working && solved && met;
             Mask pending = working && solved && !met;
@@ -279,6 +282,8 @@ BeResult<T> be_step(const SanisandParams& P, const IntegrationSettings& s, const
             done = done || polish;
             working = working && !polish && !failed;
         }
+        // a lane that met the tolerance in the last line search
+        done = done || (working && (be_max_norm(r) <= be_tolerance));
         const Mask converged = plastic_lanes && done;
         // the end state must be one the model admits: a hardening denominator d > 0 (h > 0),
         // a non-negative multiplier, the pressure above the floor

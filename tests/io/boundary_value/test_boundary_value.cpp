@@ -126,12 +126,15 @@ TEST(BoundaryValueScene, ImplicitModelIntegrationOnlyForSanisand) {
     EXPECT_FALSE(test::parse_boundary_value(cnl_2d)
                      .contacts.at(0)
                      .pair.options.interface.model.backward_euler);
-    EXPECT_TRUE(test::parse_boundary_value(cnl_2d, {"interface.model=\"sanisand\"",
-                                                    "interface.parameters=\"karlsruhe-sand\"",
-                                                    "interface.model_integration=\"implicit\""})
+    const std::string text = test::read_text(cnl_2d);
+    const std::string sanisand = test::replaced(
+        test::replaced(text, "model = \"hypoplasticity\"\nparameters = \"l4c\"\nroughness = 0.9",
+                       "model = \"sanisand\"\nparameters = \"karlsruhe-sand\"\nroughness = "
+                       "0.9\nmodel_integration = \"implicit\""),
+        "intergranular_strain = [0.0, 0.0, 0.0, 7.0710678e-5, 0.0, 0.0]", "");
+    EXPECT_TRUE(test::parse_boundary_value(test::write_scene(sanisand))
                     .contacts.at(0)
                     .pair.options.interface.model.backward_euler);
-    const std::string text = test::read_text(cnl_2d);
     test::expect_boundary_value_error(
         test::replaced(text, "roughness = 0.9",
                        "roughness = 0.9\nmodel_integration = \"implicit\""),
