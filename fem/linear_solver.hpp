@@ -23,6 +23,14 @@ struct LinearSolverCounters {
     long krylov_solves = 0;     // solves with a held factorisation as GMRES preconditioner
     long krylov_iterations = 0; // their preconditioner applications
     long krylov_fallbacks = 0;  // of them, unconverged: a new factorisation followed
+    // UMFPACK's own report of its numeric factorisations: floating-point operations summed over
+    // all of them, and the factors' entries (L + U) and the strategy of the last one (where the
+    // solve phase's time goes: fill and flops, not the call count).
+    double factor_flops = 0.0;
+    double factor_seconds = 0.0; // wall time in the numeric factorisations
+    double krylov_seconds = 0.0; // wall time in the preconditioned GMRES solves
+    long factor_nonzeros = 0;
+    std::string factor_strategy;
 };
 
 class LinearSolver {

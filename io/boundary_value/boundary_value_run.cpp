@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "fem/blas_binding.hpp"
 #include "io/boundary_value/boundary_value_effects.hpp"
 #include "io/boundary_value/boundary_value_fields.hpp"
 #include "io/boundary_value/boundary_value_history.hpp"
@@ -444,6 +445,15 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
         d["formulation"] = scene.main_contact()->formulation.name();
     }
     d["linear_solver"] = scene.linear_solver;
+    {
+        // Where the solve phase goes (seconds are wall time, so not among the counters).
+        const fem::BlasBinding blas = fem::blas_binding();
+        d["linear_solve_work"] = {
+            {"factorise_s", c.linear.factor_seconds}, {"krylov_s", c.linear.krylov_seconds},
+            {"factor_flops", c.linear.factor_flops},  {"factor_nonzeros", c.linear.factor_nonzeros},
+            {"strategy", c.linear.factor_strategy},   {"blas", blas.dgemm_library},
+            {"blas_threads_pinned", blas.openblas}};
+    }
     d["tangent"] = scene.tangent;
     d["predictor"] = scene.predictor;
     d["stages"] = scene.stages.size();
