@@ -11,22 +11,13 @@
 #include "kernels/material_update.hpp"
 #include "kernels/parameter_sets.hpp"
 #include "kernels/sanisand.hpp"
+#include "tests/kernels/sanisand_test_support.hpp"
 
 using namespace ifsim;
 
 namespace {
 
-using Y = Sanisand::State<double>;
-using Batch = simd::batch;
-using YB = Sanisand::State<Batch>;
-constexpr std::size_t W = simd::lanes;
-
-SanisandParams karlsruhe(double kappa = 1.0) {
-    SanisandParams p = parameter_sets::sanisand_karlsruhe();
-    p.roughness = kappa;
-    p.prepare();
-    return p;
-}
+using namespace sanisand_test;
 
 IntegrationSettings implicit_settings() {
     IntegrationSettings s;
