@@ -27,8 +27,8 @@ namespace ifsim::detail {
 namespace lane_col {
 inline constexpr int t_N = 0, dg1 = 1, dg2 = 2, s_p1 = 3, s_p2 = 4, forced = 5;
 inline constexpr int status = 6, subincrements = 7, newton = 8, evaluations = 9, msub = 10,
-                     residual = 11, open = 12, cause = 13, band_clamped = 14;
-inline constexpr int state = 15; // then NS + 6 state columns
+                     residual = 11, open = 12, cause = 13, band_clamped = 14, fallbacks = 15;
+inline constexpr int state = 16; // then NS + 6 state columns
 } // namespace lane_col
 
 // A lane of the buffer and the work it is expected to take (sub-increments).
@@ -98,6 +98,7 @@ void write_lane(ColumnStore& lanes, std::size_t l, const InterfaceState<double, 
     lanes.col(open)[l] = stats.open;
     lanes.col(cause)[l] = stats.cause;
     lanes.col(band_clamped)[l] = stats.band_clamped;
+    lanes.col(fallbacks)[l] = stats.newton_fallbacks;
 }
 
 // Scalar reference path.

@@ -40,8 +40,9 @@ inline constexpr int traction = 0; // t_N, tau1, tau2
 inline constexpr int jacobian = 3; // 3 * (2 ndim) columns: comp + 3 * column
 inline constexpr int status = 21, subincrements = 22, newton_iterations = 23, evaluations = 24,
                      model_substeps = 25, residual = 26, open = 27, cause = 28, band_clamped = 29,
-                     dropped_columns = 30;
-inline constexpr int n_outputs = 31;
+                     dropped_columns = 30,
+                     newton_fallbacks = 31; // sub-increments re-solved with the difference Jacobian
+inline constexpr int n_outputs = 32;
 } // namespace contact_col
 
 // Extra state entries after the model state.

@@ -71,6 +71,7 @@ struct ContactReport {
     double newton_iterations = 0.0;
     double constitutive_evaluations = 0.0; // every model update, perturbed lanes included
     double model_substeps = 0.0;
+    double newton_fallbacks = 0.0; // sub-increments re-solved with the perturbation Jacobian
     bool ok() const { return failed == 0; }
 };
 
@@ -187,6 +188,7 @@ public:
             rep.newton_iterations += cp.output(contact_col::newton_iterations)[i];
             rep.constitutive_evaluations += cp.output(contact_col::evaluations)[i];
             rep.model_substeps += cp.output(contact_col::model_substeps)[i];
+            rep.newton_fallbacks += cp.output(contact_col::newton_fallbacks)[i];
         }
         rep.lanes = static_cast<double>(cp.size()) * blocks;
         for (std::size_t i = 0; i < cp.size(); ++i) {
@@ -273,6 +275,7 @@ private:
         lanes_.col(evaluations)[l] = 0.0;
         lanes_.col(msub)[l] = 0.0;
         lanes_.col(newton)[l] = 0.0;
+        lanes_.col(fallbacks)[l] = 0.0;
     }
 
     double lane_traction(std::size_t l, int comp) const {
@@ -307,8 +310,10 @@ private:
             const double why = lanes_.col(cause)[i];
             double evals = 0.0;
             double dropped = 0.0;
+            double fallbacks_all = 0.0;
             for (int k = 0; k < blocks; ++k) {
                 evals += lanes_.col(evaluations)[k * P + i];
+                fallbacks_all += lanes_.col(fallbacks)[k * P + i];
                 if (k > 0 && lanes_.col(status)[k * P + i] < -0.5) {
                     dropped += 1.0;
                 }
@@ -380,6 +385,7 @@ private:
             cp.output(contact_col::cause)[i] = why;
             cp.output(contact_col::band_clamped)[i] = lanes_.col(band_clamped)[i];
             cp.output(contact_col::dropped_columns)[i] = dropped;
+            cp.output(contact_col::newton_fallbacks)[i] = fallbacks_all;
         }
     }
 

@@ -110,6 +110,7 @@ public:
         res_.counters.interface_evaluations += rep.constitutive_evaluations;
         res_.counters.constitutive_evaluations += rep.constitutive_evaluations;
         res_.counters.model_substeps += rep.model_substeps;
+        res_.counters.interface_newton_fallbacks += rep.newton_fallbacks;
         last_subincrements_ = rep.subincrements;
         last_newton_ = rep.newton_iterations;
         r.ok = rep.ok();
@@ -221,6 +222,7 @@ private:
         res_.interface_seconds += seconds_since(t0);
         res_.counters.interface_evaluations += rep.constitutive_evaluations;
         res_.counters.constitutive_evaluations += rep.constitutive_evaluations;
+        res_.counters.interface_newton_fallbacks += rep.newton_fallbacks;
         return {points_.output(contact_col::traction + 1)[0],
                 points_.output(contact_col::traction + 2)[0]};
     }

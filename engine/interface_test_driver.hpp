@@ -92,6 +92,8 @@ struct InterfaceTestCounters {
     double interface_evaluations = 0.0;
     double sample_evaluations = 0.0;
     double model_substeps = 0.0;
+    // Algorithm 1 sub-increments re-solved on the perturbation Jacobian, every evaluation
+    double interface_newton_fallbacks = 0.0;
 };
 
 struct InterfaceTestResult {

@@ -97,6 +97,7 @@ ContactSetCounters ContactSet::counters() const {
         s.viscous_traction_max = std::max(s.viscous_traction_max, k.viscous_traction_max);
         s.band_clamped += k.band_clamped;
         s.dropped_columns += k.dropped_columns;
+        s.newton_fallbacks += k.newton_fallbacks;
     }
     return s;
 }

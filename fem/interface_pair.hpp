@@ -330,6 +330,7 @@ protected:
         counters_.interface_newton_iterations += rep.newton_iterations;
         counters_.band_clamped += static_cast<long>(rep.band_clamped);
         counters_.dropped_columns += rep.dropped_columns;
+        counters_.newton_fallbacks += rep.newton_fallbacks;
     }
 
     void start(const std::vector<Voigt6>& local_stress) override {

@@ -61,6 +61,7 @@ const SolverCounters& StaticSolver::counters() const {
     counters_.contact_viscous_traction_max = c.viscous_traction_max;
     counters_.contact_band_clamped = c.band_clamped;
     counters_.contact_dropped_lanes = c.dropped_columns;
+    counters_.contact_newton_fallbacks = c.newton_fallbacks;
     return counters_;
 }
 

@@ -61,6 +61,7 @@ void zip_fields(A& a, B& b, F&& f) {
     f(a.stats.open, b.stats.open);
     f(a.stats.cause, b.stats.cause);
     f(a.stats.band_clamped, b.stats.band_clamped);
+    f(a.stats.newton_fallbacks, b.stats.newton_fallbacks);
     for (int c = 0; c < 3; ++c) {
         f(a.target_start[c], b.target_start[c]);
         f(a.target_end[c], b.target_end[c]);

@@ -35,13 +35,15 @@ Sym<T> interface_strain_increment(int k, const std::array<T, 3>& x, const T& dga
     return {x[0], k >= 2 ? x[1] : T(0.0), k >= 3 ? x[2] : T(0.0), 0.5 * dgam1, 0.5 * dgam2, T(0.0)};
 }
 
-// One sub-increment: Newton on the normal strains from y0 (Algorithm 1 lines 3-10).
+// Newton on the normal strains from y0 with the given Jacobian and at most max_iterations
+// corrections (plus the polishing ones).
 template <class M, class T>
 SubincrementResult<T, M::n_state>
-solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
-                   const StateVec<T, M::n_state>& y0, const std::array<T, 3>& x_guess,
-                   const T& dgam1, const T& dgam2, const std::array<T, 3>& target,
-                   const simd::mask_t<T>& active, InterfaceStats<T>& stats) {
+newton_on_normal_strains(const typename M::Params& mp, const InterfaceSettings& s,
+                         NewtonJacobian jacobian, int max_iterations,
+                         const StateVec<T, M::n_state>& y0, const std::array<T, 3>& x_guess,
+                         const T& dgam1, const T& dgam2, const std::array<T, 3>& target,
+                         const simd::mask_t<T>& active, InterfaceStats<T>& stats) {
     using Mask = simd::mask_t<T>;
     constexpr int NS = M::n_state;
     const int k = interface_unknowns(s);
@@ -62,7 +64,7 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
     // Lanes below the tolerance that still take their polishing corrections.
     T polish_left = T(static_cast<double>(s.polish_iterations));
     Mask met(false);
-    for (int it = 0; it <= s.max_newton_iterations + s.polish_iterations; ++it) {
+    for (int it = 0; it <= max_iterations + s.polish_iterations; ++it) {
         const Mask working = active && !out.converged && !failed;
         if (simd::none(working)) {
             break;
@@ -94,7 +96,7 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
         out.model_failed = out.model_failed || (working && !model_ok);
         const Mask iterate = working && !now && model_ok;
         polish_left = simd::select(iterate && met, polish_left - 1.0, polish_left);
-        if (simd::none(iterate) || it == s.max_newton_iterations + s.polish_iterations) {
+        if (simd::none(iterate) || it == max_iterations + s.polish_iterations) {
             // Lanes that met the tolerance but ran out of iterations keep their last iterate.
             const Mask take = iterate && met;
             out.y = select_state<T, NS>(take, yt, out.y);
@@ -108,7 +110,7 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
 
         // Jacobian d sigma_normal / d eps_normal (Eq. 22).
         std::array<std::array<T, 3>, 3> J{};
-        if (s.newton_jacobian == NewtonJacobian::rate) {
+        if (jacobian == NewtonJacobian::rate) {
             const auto cols = M::template rate_stiffness<T>(mp, s.model, y0, de);
             for (int rr = 0; rr < k; ++rr) {
                 for (int c = 0; c < k; ++c) {
@@ -147,6 +149,42 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
         }
         stats.newton_iterations += simd::select(step, T(1.0), T(0.0));
     }
+    return out;
+}
+
+// One sub-increment: Newton on the normal strains from y0 (Algorithm 1 lines 3-10). With the
+// rate Jacobian, lanes that fail repeat it with the perturbation Jacobian
+// (InterfaceSettings::newton_fallback_iterations).
+template <class M, class T>
+SubincrementResult<T, M::n_state>
+solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
+                   const StateVec<T, M::n_state>& y0, const std::array<T, 3>& x_guess,
+                   const T& dgam1, const T& dgam2, const std::array<T, 3>& target,
+                   const simd::mask_t<T>& active, InterfaceStats<T>& stats) {
+    using Mask = simd::mask_t<T>;
+    constexpr int NS = M::n_state;
+    auto out = newton_on_normal_strains<M, T>(mp, s, s.newton_jacobian, s.max_newton_iterations, y0,
+                                              x_guess, dgam1, dgam2, target, active, stats);
+    if (s.newton_jacobian != NewtonJacobian::rate || s.newton_fallback_iterations <= 0) {
+        return out;
+    }
+    const Mask retry = active && !out.converged;
+    if (simd::none(retry)) {
+        return out;
+    }
+    const auto second = newton_on_normal_strains<M, T>(mp, s, NewtonJacobian::perturbation,
+                                                       s.newton_fallback_iterations, y0, x_guess,
+                                                       dgam1, dgam2, target, retry, stats);
+    stats.newton_fallbacks += simd::select(retry, T(1.0), T(0.0));
+    // The retried lanes report the second try, failed or not.
+    out.y = select_state<T, NS>(retry, second.y, out.y);
+    for (int c = 0; c < 3; ++c) {
+        out.x[c] = simd::select(retry, second.x[c], out.x[c]);
+    }
+    out.converged = simd::select_mask(retry, second.converged, out.converged);
+    out.model_failed = simd::select_mask(retry, second.model_failed, out.model_failed);
+    out.singular = simd::select_mask(retry, second.singular, out.singular);
+    out.residual = simd::select(retry, second.residual, out.residual);
     return out;
 }
 

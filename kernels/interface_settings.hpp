@@ -46,6 +46,14 @@ struct InterfaceSettings {
     double max_model_substeps = 1.0e6;
     NewtonJacobian newton_jacobian = NewtonJacobian::rate;
     double newton_perturbation = 1.0e-7; // relative strain perturbation of the Newton Jacobian
+    // With the rate Jacobian: a lane whose Newton fails repeats its sub-increment from the same
+    // guess with the perturbation Jacobian, for at most this many iterations (0: no second try).
+    // The rate stiffness at the start state can be too far from the band's true stiffness to
+    // reach its targets at all (a Sanisand band near its cone, docs/large-scale-test.md), while
+    // the perturbation Jacobian, three to four evaluations per iteration, is too dear for every
+    // call. Quadratic convergence needs few iterations, so a small bound keeps a hopeless try
+    // cheap. Only failing lanes pay, and a lane's result depends on its own data alone.
+    int newton_fallback_iterations = 10;
     // Eq. 26 lets d_s = d_s0 (1 + eps_N) shrink towards zero in long compaction. Below this
     // fraction of d_s0 the point stops with status failed (a defined stop, never a NaN).
     double min_band_fraction = 0.05;
@@ -165,12 +173,13 @@ struct InterfaceStats {
     T status = T(lane_status::ok);
     T subincrements = T(0.0); // accepted sub-increments
     T newton_iterations = T(0.0);
-    T evaluations = T(0.0);    // constitutive model updates (Newton, perturbed, rejected)
-    T model_substeps = T(0.0); // substeps of the model's own integration
-    T residual = T(0.0);       // final relative residual of Eqs. 18-20 (worst sub-increment)
-    T open = T(0.0);           // 1: contact open (t_N >= 0), no traction, state kept
-    T cause = T(0.0);          // why a lane failed: see interface_failure
-    T band_clamped = T(0.0);   // 1: d_s held at its floor (clamp_band)
+    T evaluations = T(0.0);      // constitutive model updates (Newton, perturbed, rejected)
+    T model_substeps = T(0.0);   // substeps of the model's own integration
+    T residual = T(0.0);         // final relative residual of Eqs. 18-20 (worst sub-increment)
+    T open = T(0.0);             // 1: contact open (t_N >= 0), no traction, state kept
+    T cause = T(0.0);            // why a lane failed: see interface_failure
+    T band_clamped = T(0.0);     // 1: d_s held at its floor (clamp_band)
+    T newton_fallbacks = T(0.0); // sub-increments re-solved with the perturbation Jacobian
 };
 
 } // namespace ifsim

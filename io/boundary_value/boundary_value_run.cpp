@@ -346,6 +346,7 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     if (contact) {
         k["contact_band_clamped"] = c.contact_band_clamped;
         k["contact_dropped_lanes"] = c.contact_dropped_lanes;
+        k["contact_newton_fallbacks"] = rounded(c.contact_newton_fallbacks);
         k["contact_viscous_point_updates"] = rounded(c.contact_viscous_point_updates);
         k["contact_viscous_share_max"] = c.contact_viscous_share_max;
         k["contact_viscous_traction_max"] = c.contact_viscous_traction_max;

@@ -76,7 +76,8 @@ void add_interface_point_results(RunSummary& summary, const InterfacePointScene&
                         {"subincrements", r.subincrements},
                         {"newton_iterations", r.newton_iterations},
                         {"constitutive_evaluations", r.constitutive_evaluations},
-                        {"model_substeps", r.model_substeps}};
+                        {"model_substeps", r.model_substeps},
+                        {"newton_fallbacks", r.newton_fallbacks}};
     summary.phases = {{"parse", parse_s}, {"interface", run.seconds}};
     auto& d = summary.details;
     d["columns"] = describe_columns("interface-point", columns);

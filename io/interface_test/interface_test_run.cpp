@@ -99,6 +99,7 @@ void add_interface_test_results(RunSummary& summary, const InterfaceTestScene& s
                         {"constitutive_evaluations", rounded(c.constitutive_evaluations)},
                         {"interface_newton_iterations", rounded(c.interface_newton_iterations)},
                         {"interface_evaluations", rounded(c.interface_evaluations)},
+                        {"interface_newton_fallbacks", rounded(c.interface_newton_fallbacks)},
                         {"sample_evaluations", rounded(c.sample_evaluations)},
                         {"model_substeps", rounded(c.model_substeps)}};
     if (c.band_clamped_steps > 0) {

@@ -19,6 +19,7 @@ using Six = std::array<double, 6>;
 // [integration] keys that tune Algorithm 1 (no meaning for Coulomb friction).
 constexpr std::string_view algorithm1_keys[] = {"interface_newton_jacobian",
                                                 "interface_max_newton_iterations",
+                                                "interface_newton_fallback_iterations",
                                                 "polish_iterations",
                                                 "adaptive_tolerance",
                                                 "band_collapse",
@@ -133,8 +134,9 @@ void read_integration(const TableReader& root, InterfaceTestScene& scene) {
     const TableReader t = root.table("integration");
     t.allow_only({"tolerance", "min_pressure", "max_substeps", "newton_tolerance",
                   "stagnation_tolerance", "max_newton_iterations", "interface_newton_jacobian",
-                  "interface_max_newton_iterations", "polish_iterations", "adaptive_tolerance",
-                  "band_collapse", "min_band_fraction", "scheme", "max_step_substeps"});
+                  "interface_max_newton_iterations", "interface_newton_fallback_iterations",
+                  "polish_iterations", "adaptive_tolerance", "band_collapse", "min_band_fraction",
+                  "scheme", "max_step_substeps"});
     InterfaceTestSpec& spec = scene.spec;
     // The continuum models' own integration, for the sample and the interface model alike.
     IntegrationSettings& m = spec.sample_update.settings;
@@ -170,6 +172,8 @@ void read_integration(const TableReader& root, InterfaceTestScene& scene) {
             : NewtonJacobian::perturbation;
     s.max_newton_iterations = static_cast<int>(
         t.integer_or("interface_max_newton_iterations", s.max_newton_iterations, 1, 10'000));
+    s.newton_fallback_iterations = static_cast<int>(t.integer_or(
+        "interface_newton_fallback_iterations", s.newton_fallback_iterations, 0, 10'000));
     s.polish_iterations =
         static_cast<int>(t.integer_or("polish_iterations", s.polish_iterations, 0, 10));
     s.adaptive_tolerance =
