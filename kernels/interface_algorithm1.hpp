@@ -34,9 +34,11 @@ struct Algorithm1Lane {
     std::array<T, 3> x_rate{}; // normal strain increment per unit fraction
     T dgam1 = T(0.0), dgam2 = T(0.0), total = T(0.0);
     T h = T(1.0), t = T(0.0), last_h = T(1.0);
+    T h0 = T(1.0); // the first sub-increment size, where a second try starts again
     T cause = T(0.0);
     T count = T(0.0); // sub-increments tried (guard max_subincrements)
     Mask finite_in{}, below{}, open{}, run{}, forced{}, active{}, failed{};
+    Mask perturbed{}; // on its second try: Newton on the perturbation Jacobian
 };
 
 // Calls f(a_field, b_field) for every field of two carries (of different value types, e.g. a
@@ -73,6 +75,7 @@ void zip_fields(A& a, B& b, F&& f) {
     f(a.h, b.h);
     f(a.t, b.t);
     f(a.last_h, b.last_h);
+    f(a.h0, b.h0);
     f(a.cause, b.cause);
     f(a.count, b.count);
     f(a.finite_in, b.finite_in);
@@ -82,6 +85,7 @@ void zip_fields(A& a, B& b, F&& f) {
     f(a.forced, b.forced);
     f(a.active, b.active);
     f(a.failed, b.failed);
+    f(a.perturbed, b.perturbed);
 }
 
 template <class T>
@@ -183,6 +187,8 @@ Algorithm1Lane<T, M::n_state> interface_begin(const InterfaceSettings& s,
 
     c.cur = st;
     c.last_h = c.h;
+    c.h0 = c.h;
+    c.perturbed = Mask(false);
     c.active = c.run;
     c.failed = !c.finite_in || !band_ok;
     c.cause = simd::select(!c.finite_in, T(interface_failure::non_finite_input),
@@ -220,8 +226,18 @@ void interface_step(const typename M::Params& mp, const InterfaceSettings& s,
         guess[i] = c.x_rate[i] * hl;
     }
     const T t_end = simd::select(hl >= (T(1.0) - c.t), T(1.0), c.t + hl);
+    // A lane's second try (InterfaceSettings::newton_fallback): lanes that would fail on a
+    // Newton that did not converge start again from their last accepted state at their first
+    // sub-increment size, on the perturbation Jacobian. Returns the lanes that take it.
+    const bool second_tries = s.newton_fallback && s.newton_jacobian == NewtonJacobian::rate;
+    auto second_try = [&](const Mask& would_fail) {
+        const Mask m = second_tries ? (would_fail && !c.perturbed) : Mask(false);
+        c.perturbed = c.perturbed || m;
+        c.stats.newton_fallbacks += simd::select(m, T(1.0), T(0.0));
+        return m;
+    };
     const auto full = solve_subincrement<M, T>(mp, s, c.cur.y, guess, c.dgam1 * hl, c.dgam2 * hl,
-                                               target_at(t_end), c.active, c.stats);
+                                               target_at(t_end), c.active, c.stats, c.perturbed);
     Mask accept = c.active && full.converged;
     StateVec<T, NS> y_new = full.y;
     std::array<T, 3> x_new = full.x;
@@ -234,11 +250,12 @@ void interface_step(const typename M::Params& mp, const InterfaceSettings& s,
             g2[i] = 0.5 * full.x[i];
         }
         const auto a = solve_subincrement<M, T>(mp, s, c.cur.y, g2, c.dgam1 * hh, c.dgam2 * hh,
-                                                target_at(c.t + hh), accept && !c.forced, c.stats);
+                                                target_at(c.t + hh), accept && !c.forced, c.stats,
+                                                c.perturbed);
         // Forced lanes run neither half (a is masked off for them and reports converged).
         const auto b =
             solve_subincrement<M, T>(mp, s, a.y, a.x, c.dgam1 * hh, c.dgam2 * hh, target_at(t_end),
-                                     accept && a.converged && !c.forced, c.stats);
+                                     accept && a.converged && !c.forced, c.stats, c.perturbed);
         const Mask both = accept && a.converged && b.converged;
         // Error of the shear stresses (the normal ones are pinned by Eqs. 18-20).
         const T dt1 = b.y[3] - full.y[3];
@@ -258,8 +275,12 @@ void interface_step(const typename M::Params& mp, const InterfaceSettings& s,
         // Forced lanes keep their size and halve it where Newton fails (forced_step_size).
         next_h = simd::select(c.forced, simd::select(accept, c.h, 0.5 * hl),
                               simd::select(accept, hl * grow, hl * shrink));
-        // A sub-increment that cannot be made small enough ends the lane as failed.
-        const Mask too_small = c.active && !accept && (hl * c.total < 1.0e-12);
+        // A sub-increment that cannot be made small enough ends the lane as failed, or where a
+        // Newton failed, gives it its second try.
+        const Mask smallest = c.active && !accept && (hl * c.total < 1.0e-12);
+        const Mask retried = second_try(smallest && !both);
+        const Mask too_small = smallest && !retried;
+        next_h = simd::select(retried, c.h0, next_h);
         // The cause and number of the first of the three solves that failed (the full one, or
         // a half whose Newton failed where the full one converged), else the error control's.
         const Mask ran = c.active && full.converged; // the halves ran where this holds
@@ -287,16 +308,21 @@ void interface_step(const typename M::Params& mp, const InterfaceSettings& s,
         // their differences stay derivatives of one discretisation. Failing them instead
         // dropped their point's Jacobian columns (docs/large-scale-test.md).
         const Mask retry = c.active && !full.converged && (hl * c.total >= 1.0e-12);
-        c.h = simd::select(retry, 0.5 * hl, c.h);
-        fail(c.active && !retry && full.model_failed, interface_failure::model);
-        fail(c.active && !retry && full.singular, interface_failure::singular_newton);
-        fail(c.active && !retry && !full.converged, interface_failure::newton);
-        c.active = c.active && (full.converged || retry);
+        const Mask retried = second_try(c.active && !full.converged && !retry);
+        c.h = simd::select(retry, 0.5 * hl, simd::select(retried, c.h0, c.h));
+        const Mask ends = c.active && !retry && !retried;
+        fail(ends && full.model_failed, interface_failure::model);
+        fail(ends && full.singular, interface_failure::singular_newton);
+        fail(ends && !full.converged, interface_failure::newton);
+        c.active = c.active && (full.converged || retry || retried);
     } else {
-        fail(c.active && full.model_failed, interface_failure::model);
-        fail(c.active && full.singular, interface_failure::singular_newton);
-        fail(c.active && !full.converged, interface_failure::newton);
-        c.active = c.active && full.converged;
+        // Fixed sub-increments: the second try solves the same sub-increment again.
+        const Mask retried = second_try(c.active && !full.converged);
+        const Mask ends = c.active && !retried;
+        fail(ends && full.model_failed, interface_failure::model);
+        fail(ends && full.singular, interface_failure::singular_newton);
+        fail(ends && !full.converged, interface_failure::newton);
+        c.active = c.active && (full.converged || retried);
     }
     // Eq. 26 within the increment: a sub-increment that takes d_s below its floor ends the
     // lane (band collapse) unless the floor is to be held.

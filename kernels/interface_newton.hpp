@@ -35,15 +35,16 @@ Sym<T> interface_strain_increment(int k, const std::array<T, 3>& x, const T& dga
     return {x[0], k >= 2 ? x[1] : T(0.0), k >= 3 ? x[2] : T(0.0), 0.5 * dgam1, 0.5 * dgam2, T(0.0)};
 }
 
-// Newton on the normal strains from y0 with the given Jacobian and at most max_iterations
-// corrections (plus the polishing ones).
+// One sub-increment: Newton on the normal strains from y0 (Algorithm 1 lines 3-10). Lanes in
+// `perturbed` take the perturbation Jacobian whatever s.newton_jacobian says (a lane's second
+// try, interface_step).
 template <class M, class T>
 SubincrementResult<T, M::n_state>
-newton_on_normal_strains(const typename M::Params& mp, const InterfaceSettings& s,
-                         NewtonJacobian jacobian, int max_iterations,
-                         const StateVec<T, M::n_state>& y0, const std::array<T, 3>& x_guess,
-                         const T& dgam1, const T& dgam2, const std::array<T, 3>& target,
-                         const simd::mask_t<T>& active, InterfaceStats<T>& stats) {
+solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
+                   const StateVec<T, M::n_state>& y0, const std::array<T, 3>& x_guess,
+                   const T& dgam1, const T& dgam2, const std::array<T, 3>& target,
+                   const simd::mask_t<T>& active, InterfaceStats<T>& stats,
+                   const simd::mask_t<T>& perturbed = simd::mask_t<T>(false)) {
     using Mask = simd::mask_t<T>;
     constexpr int NS = M::n_state;
     const int k = interface_unknowns(s);
@@ -64,7 +65,7 @@ newton_on_normal_strains(const typename M::Params& mp, const InterfaceSettings& 
     // Lanes below the tolerance that still take their polishing corrections.
     T polish_left = T(static_cast<double>(s.polish_iterations));
     Mask met(false);
-    for (int it = 0; it <= max_iterations + s.polish_iterations; ++it) {
+    for (int it = 0; it <= s.max_newton_iterations + s.polish_iterations; ++it) {
         const Mask working = active && !out.converged && !failed;
         if (simd::none(working)) {
             break;
@@ -96,7 +97,7 @@ newton_on_normal_strains(const typename M::Params& mp, const InterfaceSettings& 
         out.model_failed = out.model_failed || (working && !model_ok);
         const Mask iterate = working && !now && model_ok;
         polish_left = simd::select(iterate && met, polish_left - 1.0, polish_left);
-        if (simd::none(iterate) || it == max_iterations + s.polish_iterations) {
+        if (simd::none(iterate) || it == s.max_newton_iterations + s.polish_iterations) {
             // Lanes that met the tolerance but ran out of iterations keep their last iterate.
             const Mask take = iterate && met;
             out.y = select_state<T, NS>(take, yt, out.y);
@@ -109,15 +110,19 @@ newton_on_normal_strains(const typename M::Params& mp, const InterfaceSettings& 
         }
 
         // Jacobian d sigma_normal / d eps_normal (Eq. 22).
+        const Mask by_difference =
+            s.newton_jacobian == NewtonJacobian::perturbation ? Mask(true) : perturbed;
         std::array<std::array<T, 3>, 3> J{};
-        if (jacobian == NewtonJacobian::rate) {
+        if (!simd::all(by_difference || !iterate)) {
             const auto cols = M::template rate_stiffness<T>(mp, s.model, y0, de);
             for (int rr = 0; rr < k; ++rr) {
                 for (int c = 0; c < k; ++c) {
                     J[rr][c] = cols[c][rr];
                 }
             }
-        } else {
+        }
+        const Mask differenced = iterate && by_difference;
+        if (simd::any(differenced)) {
             // Same number of equal substeps as the base, so the quotient sees no step noise.
             SubstepControl<T> fixed;
             fixed.fixed_substeps = simd::max(ms.substeps, T(1.0));
@@ -125,16 +130,16 @@ newton_on_normal_strains(const typename M::Params& mp, const InterfaceSettings& 
             StateVec<T, NS> yb = y0;
             UpdateStats<T> bs;
             material_update<M, T>(mp, s.model, fixed, yb, de, bs);
-            stats.evaluations += simd::select(iterate, T(1.0), T(0.0));
+            stats.evaluations += simd::select(differenced, T(1.0), T(0.0));
             for (int c = 0; c < k; ++c) {
                 Sym<T> dp = de;
                 dp[c] += delta;
                 StateVec<T, NS> yp = y0;
                 UpdateStats<T> ps;
                 material_update<M, T>(mp, s.model, fixed, yp, dp, ps);
-                stats.evaluations += simd::select(iterate, T(1.0), T(0.0));
+                stats.evaluations += simd::select(differenced, T(1.0), T(0.0));
                 for (int rr = 0; rr < k; ++rr) {
-                    J[rr][c] = (yp[rr] - yb[rr]) / delta;
+                    J[rr][c] = simd::select(by_difference, (yp[rr] - yb[rr]) / delta, J[rr][c]);
                 }
             }
         }
@@ -149,42 +154,6 @@ newton_on_normal_strains(const typename M::Params& mp, const InterfaceSettings& 
         }
         stats.newton_iterations += simd::select(step, T(1.0), T(0.0));
     }
-    return out;
-}
-
-// One sub-increment: Newton on the normal strains from y0 (Algorithm 1 lines 3-10). With the
-// rate Jacobian, lanes that fail repeat it with the perturbation Jacobian
-// (InterfaceSettings::newton_fallback_iterations).
-template <class M, class T>
-SubincrementResult<T, M::n_state>
-solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
-                   const StateVec<T, M::n_state>& y0, const std::array<T, 3>& x_guess,
-                   const T& dgam1, const T& dgam2, const std::array<T, 3>& target,
-                   const simd::mask_t<T>& active, InterfaceStats<T>& stats) {
-    using Mask = simd::mask_t<T>;
-    constexpr int NS = M::n_state;
-    auto out = newton_on_normal_strains<M, T>(mp, s, s.newton_jacobian, s.max_newton_iterations, y0,
-                                              x_guess, dgam1, dgam2, target, active, stats);
-    if (s.newton_jacobian != NewtonJacobian::rate || s.newton_fallback_iterations <= 0) {
-        return out;
-    }
-    const Mask retry = active && !out.converged;
-    if (simd::none(retry)) {
-        return out;
-    }
-    const auto second = newton_on_normal_strains<M, T>(mp, s, NewtonJacobian::perturbation,
-                                                       s.newton_fallback_iterations, y0, x_guess,
-                                                       dgam1, dgam2, target, retry, stats);
-    stats.newton_fallbacks += simd::select(retry, T(1.0), T(0.0));
-    // The retried lanes report the second try, failed or not.
-    out.y = select_state<T, NS>(retry, second.y, out.y);
-    for (int c = 0; c < 3; ++c) {
-        out.x[c] = simd::select(retry, second.x[c], out.x[c]);
-    }
-    out.converged = simd::select_mask(retry, second.converged, out.converged);
-    out.model_failed = simd::select_mask(retry, second.model_failed, out.model_failed);
-    out.singular = simd::select_mask(retry, second.singular, out.singular);
-    out.residual = simd::select(retry, second.residual, out.residual);
     return out;
 }
 

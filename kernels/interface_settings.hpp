@@ -46,14 +46,14 @@ struct InterfaceSettings {
     double max_model_substeps = 1.0e6;
     NewtonJacobian newton_jacobian = NewtonJacobian::rate;
     double newton_perturbation = 1.0e-7; // relative strain perturbation of the Newton Jacobian
-    // With the rate Jacobian: a lane whose Newton fails repeats its sub-increment from the same
-    // guess with the perturbation Jacobian, for at most this many iterations (0: no second try).
-    // The rate stiffness at the start state can be too far from the band's true stiffness to
-    // reach its targets at all (a Sanisand band near its cone, docs/large-scale-test.md), while
-    // the perturbation Jacobian, three to four evaluations per iteration, is too dear for every
-    // call. Quadratic convergence needs few iterations, so a small bound keeps a hopeless try
-    // cheap. Only failing lanes pay, and a lane's result depends on its own data alone.
-    int newton_fallback_iterations = 10;
+    // With the rate Jacobian: a lane that would fail because its Newton does not converge even
+    // at the smallest sub-increment gets a second try instead. It goes on from its last accepted
+    // sub-increment, at the call's first sub-increment size, on the perturbation Jacobian. The
+    // rate stiffness at the start state can be too far from the band's true stiffness to reach
+    // the targets at all (a Sanisand band near its cone, docs/large-scale-test.md), while the
+    // perturbation Jacobian (k + 1 more evaluations per iteration) is too dear for every call.
+    // As a last resort it leaves every call that succeeds without it bit for bit unchanged.
+    bool newton_fallback = true;
     // Eq. 26 lets d_s = d_s0 (1 + eps_N) shrink towards zero in long compaction. Below this
     // fraction of d_s0 the point stops with status failed (a defined stop, never a NaN).
     double min_band_fraction = 0.05;
@@ -179,7 +179,7 @@ struct InterfaceStats {
     T open = T(0.0);             // 1: contact open (t_N >= 0), no traction, state kept
     T cause = T(0.0);            // why a lane failed: see interface_failure
     T band_clamped = T(0.0);     // 1: d_s held at its floor (clamp_band)
-    T newton_fallbacks = T(0.0); // sub-increments re-solved with the perturbation Jacobian
+    T newton_fallbacks = T(0.0); // 1: the call took its second try (newton_fallback)
 };
 
 } // namespace ifsim

@@ -98,7 +98,7 @@ const std::vector<std::string_view>& boundary_value_interface_keys() {
                                                        "model_tolerance",
                                                        "model_integration",
                                                        "newton_jacobian",
-                                                       "newton_fallback_iterations",
+                                                       "newton_fallback",
                                                        "jacobian_tolerance",
                                                        "polish_iterations",
                                                        "adaptive_partition",
@@ -145,9 +145,8 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     const InterfaceFormulationSpec& f = out.formulation;
     if (f.is_coulomb()) {
         constexpr std::string_view algorithm1_keys[] = {
-            "model_tolerance",    "model_integration",         "newton_jacobian",
-            "jacobian_tolerance", "polish_iterations",         "adaptive_partition",
-            "defer_jacobian",     "newton_fallback_iterations"};
+            "model_tolerance",   "model_integration",  "newton_jacobian", "jacobian_tolerance",
+            "polish_iterations", "adaptive_partition", "defer_jacobian",  "newton_fallback"};
         t.reject(algorithm1_keys, algorithm1_key_with_coulomb);
         constexpr std::string_view viscosity_key[] = {"slip_viscosity", "slip_viscosity_use"};
         t.reject(viscosity_key, "regularises a continuum interface band past its peak; "
@@ -180,9 +179,9 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     is.newton_jacobian = t.choice_or("newton_jacobian", "rate", {"rate", "perturbation"}) == "rate"
                              ? NewtonJacobian::rate
                              : NewtonJacobian::perturbation;
-    // With the rate Jacobian, a failed sub-increment's second try on the difference Jacobian.
-    is.newton_fallback_iterations = static_cast<int>(
-        t.integer_or("newton_fallback_iterations", is.newton_fallback_iterations, 0, 1000));
+    // With the rate Jacobian: a point whose Newton fails gets a second try on the difference
+    // Jacobian.
+    is.newton_fallback = t.boolean_or("newton_fallback", is.newton_fallback);
     is.jacobian_tolerance =
         t.number_or("jacobian_tolerance", is.jacobian_tolerance, Bounds::closed_open(0.0, 1.0));
     is.polish_iterations =

@@ -29,7 +29,7 @@ void visit_options(ContactOptions& o, Visitor& v) {
     v.choice("newton_jacobian", s.newton_jacobian,
              std::array<std::string_view, 2>{"rate", "perturbation"});
     v.number("newton_perturbation", s.newton_perturbation, Bounds::open(0.0, 1.0));
-    v.integer("newton_fallback_iterations", s.newton_fallback_iterations, 0, 10'000);
+    v.flag("newton_fallback", s.newton_fallback);
     v.number("min_band_fraction", s.min_band_fraction, Bounds::open(0.0, 1.0));
     v.number("max_normal_change", s.max_normal_change, Bounds::positive());
     v.number("open_threshold", s.open_threshold, Bounds::non_negative());

@@ -17,13 +17,11 @@ namespace {
 using Six = std::array<double, 6>;
 
 // [integration] keys that tune Algorithm 1 (no meaning for Coulomb friction).
-constexpr std::string_view algorithm1_keys[] = {"interface_newton_jacobian",
-                                                "interface_max_newton_iterations",
-                                                "interface_newton_fallback_iterations",
-                                                "polish_iterations",
-                                                "adaptive_tolerance",
-                                                "band_collapse",
-                                                "min_band_fraction"};
+constexpr std::string_view algorithm1_keys[] = {
+    "interface_newton_jacobian", "interface_max_newton_iterations",
+    "interface_newton_fallback", "polish_iterations",
+    "adaptive_tolerance",        "band_collapse",
+    "min_band_fraction"};
 
 struct SampleStart {
     Six stress{};
@@ -134,7 +132,7 @@ void read_integration(const TableReader& root, InterfaceTestScene& scene) {
     const TableReader t = root.table("integration");
     t.allow_only({"tolerance", "min_pressure", "max_substeps", "newton_tolerance",
                   "stagnation_tolerance", "max_newton_iterations", "interface_newton_jacobian",
-                  "interface_max_newton_iterations", "interface_newton_fallback_iterations",
+                  "interface_max_newton_iterations", "interface_newton_fallback",
                   "polish_iterations", "adaptive_tolerance", "band_collapse", "min_band_fraction",
                   "scheme", "max_step_substeps"});
     InterfaceTestSpec& spec = scene.spec;
@@ -172,8 +170,7 @@ void read_integration(const TableReader& root, InterfaceTestScene& scene) {
             : NewtonJacobian::perturbation;
     s.max_newton_iterations = static_cast<int>(
         t.integer_or("interface_max_newton_iterations", s.max_newton_iterations, 1, 10'000));
-    s.newton_fallback_iterations = static_cast<int>(t.integer_or(
-        "interface_newton_fallback_iterations", s.newton_fallback_iterations, 0, 10'000));
+    s.newton_fallback = t.boolean_or("interface_newton_fallback", s.newton_fallback);
     s.polish_iterations =
         static_cast<int>(t.integer_or("polish_iterations", s.polish_iterations, 0, 10));
     s.adaptive_tolerance =

@@ -149,7 +149,7 @@ TEST(FeShearBox, FailingInterfacePointStopsTheRunWithADiagnostic) {
         c.options.interface.tolerance = 1.0e-12;
         c.options.interface.max_newton_iterations = 1;
         c.options.interface.polish_iterations = 0;
-        c.options.interface.newton_fallback_iterations = 0; // no second try to rescue it
+        c.options.interface.newton_fallback = false; // no second try to rescue it
     };
     const ShearBoxRun r = run_shear_box(o);
     ASSERT_FALSE(r.ok);

@@ -25,7 +25,7 @@ std::vector<double> residual_sequence(const typename M::Params& mp, InterfaceSet
                                       const std::array<double, 3>& target, int kmax) {
     s.tolerance = 0.0;
     s.polish_iterations = 0;
-    s.newton_fallback_iterations = 0; // a tolerance of 0 "fails" every lane: no second try
+    s.newton_fallback = false; // a tolerance of 0 "fails" every lane: no second try
     std::vector<double> r;
     for (int k = 0; k <= kmax; ++k) {
         s.max_newton_iterations = k;
@@ -326,7 +326,7 @@ TEST(InterfaceAlgorithm1, ForcedLaneHalvesASubincrementItCannotIntegrate) {
     InterfaceSettings s = settings(InterfaceFormulation::novel, 3, NewtonJacobian::rate);
     s.adaptive = true;
     s.shear_band_thickness = 0.006;
-    s.newton_fallback_iterations = 0; // the halving itself is under test
+    s.newton_fallback = false; // the halving itself is under test
     const auto y = hypo_state(-3.0, 0.5, 0.646);
     const InterfaceInput<double> free{-3.0, 1.0e-3, 0.0, -1.5, -1.5, 0.0};
     InterfaceInput<double> forced = free;

@@ -1,11 +1,10 @@
-// Algorithm 1's second try (InterfaceSettings::newton_fallback_iterations): a sub-increment whose
-// rate-Jacobian Newton fails is solved again with the perturbation Jacobian. The case is a real
-// one: the rough Sanisand point of the coarse §6 scene that stopped the run (stage 5, wall
-// 0.7 mm down; docs/large-scale-test.md), whose band near its cone cannot reach its relaxed
-// targets with the rate stiffness of the start state. Checked: the second try converges and
-// meets Eqs. 18-20, it agrees with a run on the perturbation Jacobian throughout, lanes that
-// converge on the rate Jacobian are not touched (bit for bit), and the SIMD lane equals the
-// scalar one.
+// Algorithm 1's second try (InterfaceSettings::newton_fallback): a call whose rate-Jacobian Newton
+// fails even at the smallest sub-increment goes on with the perturbation Jacobian. The case is a
+// real one: the rough Sanisand point of the coarse §6 scene that stopped the run (stage 5, wall 0.7
+// mm down; docs/large-scale-test.md), whose band near its cone cannot reach its relaxed targets
+// with the rate stiffness of the start state. Checked: the second try converges and meets Eqs.
+// 18-20, it agrees with a run on the perturbation Jacobian throughout, lanes that converge on the
+// rate Jacobian are not touched (bit for bit), and the SIMD lane equals the scalar one.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -93,7 +92,7 @@ TEST(InterfaceNewtonFallback, SolvesTheSanisandBandTheRateJacobianCannot) {
     const auto mp = karlsruhe_sanisand(1.0);
     const auto in = relaxed_targets();
     InterfaceSettings rate_only = the_run_settings();
-    rate_only.newton_fallback_iterations = 0;
+    rate_only.newton_fallback = false;
     const auto failed = direct_update<Sanisand>(mp, rate_only, band_near_cone(), in);
     // Without the second try the call fails as it did in the run.
     ASSERT_EQ(failed.stats.status, lane_status::failed);
@@ -103,8 +102,8 @@ TEST(InterfaceNewtonFallback, SolvesTheSanisandBandTheRateJacobianCannot) {
     const InterfaceSettings s = the_run_settings();
     const auto r = direct_update<Sanisand>(mp, s, band_near_cone(), in);
     ASSERT_EQ(r.stats.status, lane_status::ok);
-    EXPECT_GE(r.stats.newton_fallbacks, 1.0);
-    EXPECT_EQ(r.stats.subincrements, 56.0);
+    EXPECT_EQ(r.stats.newton_fallbacks, 1.0);
+    EXPECT_GE(r.stats.subincrements, 56.0);
     EXPECT_LE(equilibrium_residual(r.st.y, in), s.tolerance);
     EXPECT_EQ(r.st.y[5], 0.0); // Eq. 17
 
@@ -128,7 +127,7 @@ TEST(InterfaceNewtonFallback, SolvesTheSanisandBandTheRateJacobianCannot) {
 TEST(InterfaceNewtonFallback, ConvergingCallsAreUntouched) {
     const auto mp = karlsruhe_sanisand(1.0);
     InterfaceSettings off = the_run_settings();
-    off.newton_fallback_iterations = 0;
+    off.newton_fallback = false;
     const InterfaceSettings on = the_run_settings();
     for (const double scale : {0.0, 3.0, 7.0}) {
         const auto in = ordinary_call(scale);
@@ -222,13 +221,13 @@ TEST(InterfaceNewtonFallback, BatchLaneMatchesScalarAndSparesItsNeighbours) {
     const auto mp = karlsruhe_sanisand(1.0);
     const std::size_t hard = W / 2;
     InterfaceSettings off = the_run_settings();
-    off.newton_fallback_iterations = 0;
+    off.newton_fallback = false;
     const InterfaceSettings on = the_run_settings();
     const BatchResult without = run_batch(mp, off, hard);
     const BatchResult with = run_batch(mp, on, hard);
     EXPECT_EQ(without.status[hard], lane_status::failed);
     ASSERT_EQ(with.status[hard], lane_status::ok);
-    EXPECT_GE(with.fallbacks[hard], 1.0);
+    EXPECT_EQ(with.fallbacks[hard], 1.0);
     for (std::size_t l = 0; l < W; ++l) {
         if (l == hard) {
             continue;

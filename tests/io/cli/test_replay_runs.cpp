@@ -72,8 +72,7 @@ TEST(Replay, ContactPairPointOfABoundaryValueRunFailsAgainAlone) {
     const auto [run, replay] =
         // Without Algorithm 1's second try: with it this run completes (session 16).
         run_and_replay({"scenes/fe-simple-shear-cnl-2d.toml", "--set", "interface.roughness=0.05",
-                        "--set", "stage.2.steps=10", "--set",
-                        "interface.newton_fallback_iterations=0"},
+                        "--set", "stage.2.steps=10", "--set", "interface.newton_fallback=false"},
                        "boundary-value");
     EXPECT_EQ(replay["kind"], "interface-point");
     EXPECT_EQ(replay["ndim"], 2);

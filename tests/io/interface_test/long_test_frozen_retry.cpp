@@ -116,7 +116,7 @@ nlohmann::json run_stall_scene(const std::string& tag, const std::vector<std::st
 // residual it stops at jumps with its iteration count). Its second try on the perturbation
 // Jacobian (newton_fallback_iterations, on by default) removes them, so the retry and the
 // stagnation acceptance are tested with it switched off.
-const std::string no_second_try = "integration.interface_newton_fallback_iterations=0";
+const std::string no_second_try = "integration.interface_newton_fallback=false";
 
 TEST(InterfaceFrozenRetry, StepStalledOnStepSelectionNoiseCompletes) {
     const auto summary = run_stall_scene("default", {no_second_try}, exit_code::ok);
