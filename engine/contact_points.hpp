@@ -41,7 +41,7 @@ inline constexpr int jacobian = 3; // 3 * (2 ndim) columns: comp + 3 * column
 inline constexpr int status = 21, subincrements = 22, newton_iterations = 23, evaluations = 24,
                      model_substeps = 25, residual = 26, open = 27, cause = 28, band_clamped = 29,
                      dropped_columns = 30,
-                     newton_fallbacks = 31; // sub-increments re-solved with the difference Jacobian
+                     newton_fallbacks = 31; // lanes that took Algorithm 1's second try
 inline constexpr int n_outputs = 32;
 } // namespace contact_col
 

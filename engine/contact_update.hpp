@@ -71,7 +71,7 @@ struct ContactReport {
     double newton_iterations = 0.0;
     double constitutive_evaluations = 0.0; // every model update, perturbed lanes included
     double model_substeps = 0.0;
-    double newton_fallbacks = 0.0; // sub-increments re-solved with the perturbation Jacobian
+    double newton_fallbacks = 0.0; // calls that took Algorithm 1's second try
     bool ok() const { return failed == 0; }
 };
 

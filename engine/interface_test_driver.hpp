@@ -92,7 +92,7 @@ struct InterfaceTestCounters {
     double interface_evaluations = 0.0;
     double sample_evaluations = 0.0;
     double model_substeps = 0.0;
-    // Algorithm 1 sub-increments re-solved on the perturbation Jacobian, every evaluation
+    // Algorithm 1 calls that took their second try (newton_fallback), every evaluation
     double interface_newton_fallbacks = 0.0;
 };
 

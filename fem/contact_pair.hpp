@@ -99,7 +99,7 @@ struct ContactPairCounters {
     long failed_evaluations = 0;
     long band_clamped = 0;
     double dropped_columns = 0.0;
-    double newton_fallbacks = 0.0; // Algorithm 1 sub-increments re-solved, difference Jacobian
+    double newton_fallbacks = 0.0; // Algorithm 1 calls that took their second try
     // Novel formulation: engine re-runs after a point failed with the continuum's in-plane
     // stresses as targets, and committed point updates whose targets were relaxed (Eqs. 19-20
     // held only in part: an admissible jump of sigma_p, Eq. 13).

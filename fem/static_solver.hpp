@@ -83,7 +83,7 @@ struct SolverCounters {
     double contact_viscous_traction_max = 0.0;
     long contact_band_clamped = 0;      // point evaluations on a clamped band (clamp_band = true)
     double contact_dropped_lanes = 0.0; // failed Jacobian lanes (the point took Eq. B3's columns)
-    double contact_newton_fallbacks = 0.0; // Algorithm 1 sub-increments on the difference Jacobian
+    double contact_newton_fallbacks = 0.0; // Algorithm 1 calls on their second try
     LinearSolverCounters linear;
 };
 
