@@ -249,3 +249,33 @@ TEST(InterfaceNewtonFallback, BatchLaneMatchesScalarAndSparesItsNeighbours) {
         EXPECT_LT(std::abs(with.y[hard][k] - scalar.st.y[k]), 1.0e-9) << "stress " << k;
     }
 }
+
+// The second try in each of Algorithm 1's three sub-increment controls: the held partition of
+// the run (forced, halved on failure), the adaptive step doubling (shrunk to its floor) and
+// fixed sub-increments (the same sub-increment solved again). The same band fails in each
+// without it and ends with Eqs. 18-20 met with it.
+TEST(InterfaceNewtonFallback, EverySubincrementControlTakesTheSecondTry) {
+    const auto mp = karlsruhe_sanisand(1.0);
+    struct Control {
+        const char* name;
+        bool adaptive;
+        double forced;
+    };
+    for (const Control ctl : {Control{"forced", true, 56.0}, Control{"adaptive", true, 0.0},
+                              Control{"fixed", false, 0.0}}) {
+        SCOPED_TRACE(ctl.name);
+        InterfaceInput<double> in = relaxed_targets();
+        in.forced_subincrements = ctl.forced;
+        InterfaceSettings off = the_run_settings();
+        off.adaptive = ctl.adaptive;
+        off.newton_fallback = false;
+        InterfaceSettings on = off;
+        on.newton_fallback = true;
+        const auto failed = direct_update<Sanisand>(mp, off, band_near_cone(), in);
+        EXPECT_EQ(failed.stats.status, lane_status::failed);
+        const auto r = direct_update<Sanisand>(mp, on, band_near_cone(), in);
+        ASSERT_EQ(r.stats.status, lane_status::ok);
+        EXPECT_EQ(r.stats.newton_fallbacks, 1.0);
+        EXPECT_LE(equilibrium_residual(r.st.y, in), on.tolerance);
+    }
+}
