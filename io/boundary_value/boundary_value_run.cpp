@@ -13,6 +13,7 @@
 #include "io/boundary_value/boundary_value_effects.hpp"
 #include "io/boundary_value/boundary_value_fields.hpp"
 #include "io/boundary_value/boundary_value_history.hpp"
+#include "io/boundary_value/iteration_log.hpp"
 #include "io/boundary_value/tangent_check_file.hpp"
 #include "io/output/column_units.hpp"
 #include "io/output/history_writer.hpp"
@@ -119,7 +120,8 @@ void warn_initial_imbalance(const fem::StaticSolver& solver, ProgressLine& line,
 BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene,
                                                  const std::filesystem::path& dir,
                                                  ProgressMode progress, bool simd,
-                                                 const BoundaryValueCheckpointing& checkpoints) {
+                                                 const BoundaryValueCheckpointing& checkpoints,
+                                                 bool iteration_log) {
     BoundaryValueRunOutcome out;
     out.nodes = scene.mesh.n_nodes();
     out.elements = scene.mesh.n_elements();
@@ -131,10 +133,14 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
     std::unique_ptr<fem::StaticSolver> solver;
     std::optional<FieldOutput> fields; // only when the scene asks: no field code runs otherwise
     std::optional<BoundaryValueProbe> probe;
+    std::optional<IterationLog> iterations;
     try {
         const auto t0 = Clock::now();
         solver = make_solver(scene, simd);
         out.setup_seconds = since(t0);
+        if (iteration_log) {
+            iterations.emplace(dir, resume != nullptr, *solver);
+        }
         probe.emplace(scene);
         if (!resume) {
             const auto t1 = Clock::now();
@@ -233,6 +239,9 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
                                      false);
                 }
                 warn_initial_imbalance(*solver, line, warned);
+                if (iterations) {
+                    iterations->record(increment + 1, info, *solver);
+                }
                 line.update(
                     static_cast<double>(steps_before) + info.t_begin * stage.steps, info.stage,
                     fmt::format("increment {}  Newton {}  residual {:.1e}{}", increment + 1,

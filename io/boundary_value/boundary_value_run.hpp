@@ -52,12 +52,13 @@ struct BoundaryValueCheckpointing : CheckpointRequest {
     const BoundaryValueCheckpoint* resume = nullptr; // continue from this one
 };
 
-// Writes DIR/history.csv. Throws std::runtime_error only when history.csv cannot be written
-// at all.
-BoundaryValueRunOutcome
-run_boundary_value_scene(const BoundaryValueScene& scene, const std::filesystem::path& dir,
-                         ProgressMode progress, bool simd,
-                         const BoundaryValueCheckpointing& checkpoints = {});
+// Writes DIR/history.csv (and DIR/iterations.csv with `iteration_log`, iteration_log.hpp).
+// Throws std::runtime_error only when history.csv cannot be written at all.
+BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene,
+                                                 const std::filesystem::path& dir,
+                                                 ProgressMode progress, bool simd,
+                                                 const BoundaryValueCheckpointing& checkpoints = {},
+                                                 bool iteration_log = false);
 
 void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& scene,
                                 const BoundaryValueRunOutcome& run, double parse_s);

@@ -104,6 +104,13 @@ void add_checkpoint_options(CLI::App* cmd, RunOptions& opt) {
         ->check(CLI::PositiveNumber);
 }
 
+// --iteration-log, the same for `run` and `resume` (a resumed run appends).
+void add_iteration_log_flag(CLI::App* cmd, RunOptions& opt) {
+    cmd->add_flag("--iteration-log", opt.iteration_log,
+                  "Boundary-value scenes: write DIR/iterations.csv, one row per Newton iteration "
+                  "with its time and contact counters (where a hard increment spends its time)");
+}
+
 } // namespace
 
 int run_cli(int argc, const char* const* argv) {
@@ -137,6 +144,7 @@ int run_cli(int argc, const char* const* argv) {
                      "Boundary-value scenes: write VTU fields every N increments")
         ->check(CLI::Range(1L, 1'000'000'000L));
     add_checkpoint_options(run_cmd, run);
+    add_iteration_log_flag(run_cmd, run);
     run_cmd->add_flag("--scalar", run.scalar,
                       "Use the scalar kernel path instead of SIMD (same results to round-off)");
     auto* progress_flag = run_cmd->add_flag(
@@ -155,6 +163,7 @@ int run_cli(int argc, const char* const* argv) {
     resume_cmd->add_option("--threads", resume.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 4096));
     add_checkpoint_options(resume_cmd, resume);
+    add_iteration_log_flag(resume_cmd, resume);
     auto* resume_progress_flag = resume_cmd->add_flag(
         "--progress", resume_progress, "Show the progress line even when stderr is not a terminal");
     resume_cmd->add_flag("--quiet,-q", resume.quiet, "No progress line and no result line")

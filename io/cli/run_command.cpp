@@ -223,7 +223,8 @@ void run_kind(Scene& scene, const toml::table& table, const RunOptions& opt, con
         BoundaryValueCheckpointing bv;
         static_cast<CheckpointRequest&>(bv) = checkpoints;
         bv.resume = resumed ? &resumed->boundary_value : nullptr;
-        const BoundaryValueRunOutcome run = run_boundary_value_scene(s, dir, progress, simd, bv);
+        const BoundaryValueRunOutcome run =
+            run_boundary_value_scene(s, dir, progress, simd, bv, opt.iteration_log);
         add_boundary_value_results(summary, s, run, parse_s);
         if (run.failed_point) {
             note_replay(summary, [&] {
@@ -410,11 +411,12 @@ int run_command(const RunOptions& opt) {
     }
     // Options of boundary-value runs given for another kind: a bad command line.
     const bool fields = opt.fields || opt.fields_every > 0;
-    if (fields && scene.kind != "boundary-value") {
+    if ((fields || opt.iteration_log) && scene.kind != "boundary-value") {
         const std::string message = fmt::format(
-            "--fields and --fields-every apply to boundary-value scenes (the others have no "
-            "field); {} is a scene of kind \"{}\"",
-            opt.scene, scene.kind);
+            "{} appl{} to boundary-value scenes (the others have no {}); {} is a scene of kind "
+            "\"{}\"",
+            fields ? "--fields and --fields-every" : "--iteration-log", fields ? "y" : "ies",
+            fields ? "field" : "Newton iteration", opt.scene, scene.kind);
         fmt::print(stderr, "ifsim: error: {}\n", message);
         summary.ok = false;
         summary.reason = message;

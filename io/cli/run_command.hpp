@@ -24,6 +24,7 @@ struct RunOptions {
     long checkpoint_every = 0;     // boundary-value: a checkpoint every N increments
     double checkpoint_minutes = 0; // boundary-value: a checkpoint every M minutes
     bool resume = false;           // `ifsim resume DIR`: scene = DIR/scene.toml, out = DIR
+    bool iteration_log = false;    // boundary-value: DIR/iterations.csv, a row per Newton iteration
 };
 
 int run_command(const RunOptions& options);
