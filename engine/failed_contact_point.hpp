@@ -24,6 +24,7 @@ struct FailedContactPoint {
     double cause = 0.0;     // interface_failure code
     double residual = 0.0;
     std::string where; // the point in words: "contact pair 'wall' point 12 at (0.1, 0.2, 0)"
+    double model_substeps = 0.0; // the call's interface-model substeps (costliest-call record)
 };
 
 template <class M>

@@ -209,6 +209,10 @@ public:
     // empty when that evaluation succeeded): its replay (io/replay/interface_replay.hpp).
     virtual std::optional<FailedContactPoint> last_failure() const { return std::nullopt; }
     virtual void forget_failure() {}
+    // The base-lane Algorithm 1 call with the most interface-model substeps so far (continuum
+    // interfaces; failed or not), for its replay: where one hard increment's time went.
+    // `cause` is its failure code (0: it succeeded).
+    virtual std::optional<FailedContactPoint> costliest_call() const { return std::nullopt; }
     // The committed state, and back (throws std::invalid_argument for another pair's).
     virtual ContactPairSnapshot snapshot() const = 0;
     virtual void restore(const ContactPairSnapshot& snapshot) = 0;

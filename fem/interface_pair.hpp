@@ -60,11 +60,13 @@ public:
             PhaseTimer timer(timers_.kernels);
             rep = engine_.update(points_, params_, defer_ ? base_only_ : spec_.options);
         }
+        note_costliest_call();
         while (!rep.ok() && !probing_ && relax_failed_points()) {
             PhaseTimer timer(timers_.kernels);
             count(rep);
             ++counters_.relaxed_reruns;
             rep = engine_.update(points_, params_, defer_ ? base_only_ : spec_.options);
+            note_costliest_call();
         }
         PhaseTimer timer(timers_.scatter);
         count(rep);
@@ -94,6 +96,7 @@ public:
     }
 
     std::optional<FailedContactPoint> last_failure() const override { return last_failure_; }
+    std::optional<FailedContactPoint> costliest_call() const override { return costliest_; }
     void forget_failure() override { last_failure_.reset(); }
 
     void commit() override {
@@ -103,6 +106,31 @@ public:
             counters_.relaxed_point_updates += l < 1.0 ? 1.0 : 0.0;
         }
         count_slip_viscosity(counters_);
+    }
+
+private:
+    // Keeps the call of the last engine update with the most model substeps if it beats the
+    // record (one pass over the points; a copy only for a new record).
+    void note_costliest_call() {
+        if (probing_) {
+            return;
+        }
+        const double* substeps = points_.output(contact_col::model_substeps);
+        std::size_t worst = 0;
+        for (std::size_t i = 1; i < kin_->n_points(); ++i) {
+            worst = substeps[i] > substeps[worst] ? i : worst;
+        }
+        if (kin_->n_points() == 0 ||
+            (costliest_ && substeps[worst] <= costliest_->model_substeps)) {
+            return;
+        }
+        const ContactKinematics& k = kin_->point(worst);
+        costliest_ = record_failed_point(
+            points_, worst, defer_ ? base_only_ : spec_.options,
+            points_.output(contact_col::cause)[worst], points_.output(contact_col::residual)[worst],
+            fmt::format("contact pair '{}' point {} at ({:.6g}, {:.6g}, {:.6g})", spec_.name, worst,
+                        k.x[0], k.x[1], k.x[2]));
+        costliest_->model_substeps = substeps[worst];
     }
 
 protected:
@@ -390,6 +418,7 @@ private:
     ContactOptions base_only_;                       // the spec's options without the Eq. 37 lanes
     bool defer_ = false;                             // the last evaluate() ran the base lanes only
     std::optional<FailedContactPoint> last_failure_; // of the last evaluate()
+    std::optional<FailedContactPoint> costliest_;    // costliest_call()
     std::vector<double> relax_; // per point: share lambda of the continuum's in-plane targets
     std::vector<int> calm_;     // per point: increments since its last relaxation
     std::vector<Voigt6> targets_before_gather_; // local_stress_ before the last regather

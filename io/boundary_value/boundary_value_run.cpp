@@ -19,6 +19,7 @@
 #include "io/output/history_writer.hpp"
 #include "io/output/run_clock.hpp"
 #include "io/output/stop_signal.hpp"
+#include "io/replay/interface_replay.hpp"
 
 namespace ifsim::io {
 
@@ -89,6 +90,40 @@ void keep_failed_point(const fem::StaticSolver& solver, const BoundaryValueScene
                 return;
             }
         }
+    }
+}
+
+// The costliest Algorithm 1 call over the pairs (ContactPair::costliest_call): a new record
+// is written at once to DIR/costliest-call.toml, so that a run stuck in a hard increment shows
+// its costliest call while it runs (a stop signal may end it before its summary).
+void keep_costliest_call(const fem::StaticSolver& solver, const BoundaryValueScene& scene,
+                         const std::filesystem::path& dir, bool simd,
+                         BoundaryValueRunOutcome& out) {
+    bool record = false;
+    for (const auto& pair : solver.contacts()) {
+        auto call = pair->costliest_call();
+        if (!call ||
+            (out.costliest_call && call->model_substeps <= out.costliest_call->model_substeps)) {
+            continue;
+        }
+        for (std::size_t i = 0; i < scene.contacts.size(); ++i) {
+            if (scene.contacts[i].pair.name == pair->spec().name) {
+                out.costliest_call = std::move(call);
+                out.costliest_pair = i;
+                record = true;
+                break;
+            }
+        }
+    }
+    if (!record) {
+        return;
+    }
+    try {
+        write_costliest_call_replay(dir, *out.costliest_call,
+                                    scene.contacts[out.costliest_pair].formulation.material, simd);
+        out.costliest_call_error.clear();
+    } catch (const std::exception& e) {
+        out.costliest_call_error = e.what();
     }
 }
 
@@ -241,6 +276,7 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
                 warn_initial_imbalance(*solver, line, warned);
                 if (iterations) {
                     iterations->record(increment + 1, info, *solver);
+                    keep_costliest_call(*solver, scene, dir, simd, out);
                 }
                 line.update(
                     static_cast<double>(steps_before) + info.t_begin * stage.steps, info.stage,
@@ -286,6 +322,9 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
     }
     if (probe) {
         out.point_recorders = probe->recorders().chosen_points();
+    }
+    if (solver && iteration_log) { // also after a failed or stopped run: its hard increment
+        keep_costliest_call(*solver, scene, dir, simd, out);
     }
     if (solver && scene.settings.check_tangent) {
         try { // also after a failed run: the iterations that led there are the point

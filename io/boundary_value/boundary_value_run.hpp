@@ -45,6 +45,11 @@ struct BoundaryValueRunOutcome {
     // pair's index in scene.contacts (for the replay, io/replay/interface_replay.hpp).
     std::optional<FailedContactPoint> failed_point;
     std::size_t failed_pair = 0;
+    // With the iteration log: the costliest Algorithm 1 call of any pair, and that pair's index,
+    // written to DIR/costliest-call.toml (the error where it could not be written).
+    std::optional<FailedContactPoint> costliest_call;
+    std::size_t costliest_pair = 0;
+    std::string costliest_call_error;
 };
 
 // Checkpoints of a run (--checkpoint-every, --checkpoint-minutes) and a run resumed from one.

@@ -226,6 +226,18 @@ void run_kind(Scene& scene, const toml::table& table, const RunOptions& opt, con
         const BoundaryValueRunOutcome run =
             run_boundary_value_scene(s, dir, progress, simd, bv, opt.iteration_log);
         add_boundary_value_results(summary, s, run, parse_s);
+        if (run.costliest_call && run.costliest_call_error.empty()) {
+            const FailedContactPoint& c = *run.costliest_call;
+            summary.details["costliest_call"] = {
+                {"replay", (dir / costliest_call_file_name).string()},
+                {"where", c.where},
+                {"model_substeps", c.model_substeps},
+                {"failure", c.cause == 0.0 ? std::string("none")
+                                           : std::string(interface_failure::describe(c.cause))}};
+        } else if (run.costliest_call) {
+            summary.warnings.push_back(
+                {"costliest_call_not_written", 1.0, run.costliest_call_error});
+        }
         if (run.failed_point) {
             note_replay(summary, [&] {
                 return write_interface_replay(dir, *run.failed_point,

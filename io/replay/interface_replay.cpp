@@ -55,4 +55,18 @@ std::filesystem::path write_interface_replay(const std::filesystem::path& dir,
         fmt::format("{} failed in Algorithm 1; the run: {}", point.where, run_reason), simd);
 }
 
+std::filesystem::path write_costliest_call_replay(const std::filesystem::path& dir,
+                                                  const FailedContactPoint& point,
+                                                  const MaterialSpec& material, bool simd) {
+    const std::string cost =
+        fmt::format("the costliest Algorithm 1 call of the run, {} at {:.4g} interface-model "
+                    "substeps ({})",
+                    point.where, point.model_substeps,
+                    point.cause == 0.0 ? std::string("it succeeded")
+                                       : describe_interface_failure(point.cause, point.residual));
+    return write_replay(dir, interface_replay_scene(point, material, "replay of " + cost), cost,
+                        simd, costliest_call_file_name,
+                        "costs the same (summary.json: counters.model_substeps)");
+}
+
 } // namespace ifsim::io

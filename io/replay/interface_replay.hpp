@@ -24,4 +24,11 @@ std::filesystem::path write_interface_replay(const std::filesystem::path& dir,
                                              const MaterialSpec& material,
                                              const std::string& run_reason, bool simd);
 
+// The costliest call of a run (ContactPair::costliest_call, with --iteration-log) to
+// DIR/costliest-call.toml: the same scene, described by its cost.
+inline constexpr const char* costliest_call_file_name = "costliest-call.toml";
+std::filesystem::path write_costliest_call_replay(const std::filesystem::path& dir,
+                                                  const FailedContactPoint& point,
+                                                  const MaterialSpec& material, bool simd);
+
 } // namespace ifsim::io

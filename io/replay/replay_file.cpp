@@ -17,13 +17,14 @@ toml::array replay_numbers(std::span<const double> values) {
 }
 
 std::filesystem::path write_replay(const std::filesystem::path& dir, const toml::table& scene,
-                                   const std::string& what_failed, bool simd) {
-    const std::filesystem::path path = dir / replay_file_name;
+                                   const std::string& what_failed, bool simd,
+                                   const std::string& name, const std::string& outcome) {
+    const std::filesystem::path path = dir / name;
     std::ostringstream text;
-    text << fmt::format("# Replay: {}\n#\n# ifsim run {} --out REPLAY_DIR{}\n# fails the same way "
+    text << fmt::format("# Replay: {}\n#\n# ifsim run {} --out REPLAY_DIR{}\n# {} "
                         "(docs/reliability.md, \"Replaying a failed point\"); the run used the "
                         "{} path.\n\n",
-                        what_failed, path.string(), simd ? "" : " --scalar",
+                        what_failed, path.string(), simd ? "" : " --scalar", outcome,
                         simd ? "SIMD" : "scalar");
     text << scene << '\n';
     write_file_atomically(path, text.str());

@@ -17,9 +17,12 @@ inline constexpr const char* replay_file_name = "replay.toml";
 toml::array replay_numbers(std::span<const double> values);
 
 // Writes `scene` with a comment header (what failed, how to run it: with --scalar when the
-// failed run ran on the scalar path) to DIR/replay.toml and returns the path. Throws
-// std::runtime_error when the file cannot be written.
+// failed run ran on the scalar path) to DIR/replay.toml (or DIR/`name`) and returns the path.
+// `outcome` says what the replay shows. Throws std::runtime_error when the file cannot be
+// written.
 std::filesystem::path write_replay(const std::filesystem::path& dir, const toml::table& scene,
-                                   const std::string& what_failed, bool simd);
+                                   const std::string& what_failed, bool simd,
+                                   const std::string& name = replay_file_name,
+                                   const std::string& outcome = "fails the same way");
 
 } // namespace ifsim::io

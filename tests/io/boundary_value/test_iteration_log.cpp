@@ -1,7 +1,8 @@
 // `--iteration-log`: DIR/iterations.csv has one row per Newton iteration of every increment,
 // its counters are differences that add up to the run's totals in summary.json, each
-// increment's rows end at the residual history.csv accepted, and the option is refused for
-// scene kinds without Newton iterations.
+// increment's rows end at the residual history.csv accepted, the replay of the costliest
+// Algorithm 1 call (DIR/costliest-call.toml) costs alone what the run counted for it, and the
+// option is refused for scene kinds without Newton iterations.
 
 #include <cstddef>
 #include <filesystem>
@@ -15,6 +16,7 @@
 
 #include "io/boundary_value/iteration_log.hpp"
 #include "io/cli/exit_codes.hpp"
+#include "io/replay/interface_replay.hpp"
 #include "tests/io/boundary_value_test_support.hpp"
 #include "tests/io/scene_test_support.hpp"
 
@@ -77,8 +79,10 @@ TEST(IterationLog, RowsAddUpToTheRunAndEndAtTheAcceptedResidual) {
                      c["contact_constitutive_evaluations"].get<double>());
     EXPECT_DOUBLE_EQ(column_sum(rows, "model_substeps"), c["contact_model_substeps"].get<double>());
     EXPECT_GT(column_sum(rows, "interface_newton_iterations"), 0.0);
+    // Seconds are written to 1e-4 s: each row rounds by at most 5e-5 s.
     EXPECT_LE(column_sum(rows, "contact_s"),
-              s["timing"]["phases"]["contact_kernels"].get<double>());
+              s["timing"]["phases"]["contact_kernels"].get<double>() +
+                  5.0e-5 * static_cast<double>(rows.size()));
 
     // Each increment: iterations 0, 1, 2, ... in order, at least newton_iterations + 1 checks
     // (a re-gather adds a check without a correction), the last one the residual accepted.
@@ -97,6 +101,19 @@ TEST(IterationLog, RowsAddUpToTheRunAndEndAtTheAcceptedResidual) {
         EXPECT_EQ(rows[last].at("residual"), h.number(inc, "residual")) << "increment " << inc;
     }
     EXPECT_EQ(at, rows.size()); // no rows of increments history.csv does not have
+
+    // The costliest Algorithm 1 call, replayed alone, costs what the run counted for it.
+    const nlohmann::json& costliest = s["costliest_call"];
+    ASSERT_TRUE(costliest.is_object()) << s.dump(2);
+    EXPECT_EQ(costliest["failure"], "none");
+    const double substeps = costliest["model_substeps"].get<double>();
+    EXPECT_GT(substeps, 0.0);
+    EXPECT_LE(substeps, c["contact_model_substeps"].get<double>());
+    const fs::path replay = test::fresh_dir("iteration-log-costliest");
+    const auto again = test::run_cli_captured(
+        {"run", costliest["replay"].get<std::string>(), "--out", replay.string()});
+    ASSERT_EQ(again.code, 0) << again.err;
+    EXPECT_EQ(test::summary(replay)["counters"]["model_substeps"].get<double>(), substeps);
 }
 
 TEST(IterationLog, WithoutTheOptionNoFileAndOtherKindsRefuseIt) {
@@ -107,6 +124,7 @@ TEST(IterationLog, WithoutTheOptionNoFileAndOtherKindsRefuseIt) {
                   .code,
               0);
     EXPECT_FALSE(fs::exists(dir / IterationLog::file_name));
+    EXPECT_FALSE(fs::exists(dir / costliest_call_file_name));
 
     const fs::path element = test::fresh_dir("iteration-log-element");
     const auto r = test::run_cli_captured({"run", "scenes/element-hypo-oedometer.toml", "--out",
