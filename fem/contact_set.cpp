@@ -89,6 +89,7 @@ ContactSetCounters ContactSet::counters() const {
         s.subincrements += k.subincrements;
         s.constitutive_evaluations += k.constitutive_evaluations;
         s.model_substeps += k.model_substeps;
+        s.interface_newton_iterations += k.interface_newton_iterations;
         s.failed_evaluations += k.failed_evaluations;
         s.relaxed_reruns += k.relaxed_reruns;
         s.relaxed_point_updates += k.relaxed_point_updates;

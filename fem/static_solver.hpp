@@ -222,6 +222,8 @@ public:
     // the first stage.
     void add_contact(ContactPairSpec spec);
     const std::vector<std::unique_ptr<ContactPair>>& contacts() const { return contacts_.pairs(); }
+    // The pairs' counters summed (what counters() reports as contact_*).
+    ContactSetCounters contact_counters() const { return contacts_.counters(); }
     const SolverSettings& settings() const { return settings_; }
 
     // Probing (tests, diagnostics): prepare a stage without running it, then evaluate the

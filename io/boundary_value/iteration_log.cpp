@@ -50,19 +50,17 @@ IterationLog::Totals IterationLog::totals(const fem::StaticSolver& solver) const
     t.element = timers.element;
     t.solve = timers.solve;
     t.contact = timers.contact_kernels;
-    for (const auto& pair : solver.contacts()) {
-        const fem::ContactPairCounters& c = pair->counters();
-        t.evaluations += static_cast<double>(c.evaluations);
-        t.point_updates += c.point_updates;
-        t.lanes += c.lanes;
-        t.subincrements += c.subincrements;
-        t.model_evaluations += c.constitutive_evaluations;
-        t.model_substeps += c.model_substeps;
-        t.newton += c.interface_newton_iterations;
-        t.fallbacks += c.newton_fallbacks;
-        t.failures += static_cast<double>(c.failed_evaluations);
-        t.relaxed_reruns += static_cast<double>(c.relaxed_reruns);
-    }
+    const fem::ContactSetCounters c = solver.contact_counters();
+    t.evaluations = static_cast<double>(c.evaluations);
+    t.point_updates = c.point_updates;
+    t.lanes = c.lanes;
+    t.subincrements = c.subincrements;
+    t.model_evaluations = c.constitutive_evaluations;
+    t.model_substeps = c.model_substeps;
+    t.newton = c.interface_newton_iterations;
+    t.fallbacks = c.newton_fallbacks;
+    t.failures = static_cast<double>(c.failed_evaluations);
+    t.relaxed_reruns = static_cast<double>(c.relaxed_reruns);
     return t;
 }
 
