@@ -236,8 +236,12 @@ void interface_step(const typename M::Params& mp, const InterfaceSettings& s,
         c.stats.newton_fallbacks += simd::select(m, T(1.0), T(0.0));
         return m;
     };
+    const T iterations_before = c.stats.newton_iterations;
+    const T evaluations_before = c.stats.evaluations;
+    const T substeps_before = c.stats.model_substeps;
     const auto full = solve_subincrement<M, T>(mp, s, c.cur.y, guess, c.dgam1 * hl, c.dgam2 * hl,
                                                target_at(t_end), c.active, c.stats, c.perturbed);
+    const T full_iterations = c.stats.newton_iterations - iterations_before;
     Mask accept = c.active && full.converged;
     StateVec<T, NS> y_new = full.y;
     std::array<T, 3> x_new = full.x;
@@ -270,7 +274,19 @@ void interface_step(const typename M::Params& mp, const InterfaceSettings& s,
         for (int i = 0; i < 3; ++i) {
             x_new[i] = simd::select(c.forced, full.x[i], a.x[i] + b.x[i]);
         }
-        const T grow = simd::min(T(4.0), simd::max(T(0.2), q));
+        T grow = simd::min(T(4.0), simd::max(T(0.2), q));
+        // The work bound (InterfaceSettings::work_newton_iterations, work_model_substeps):
+        // both counts grow with the sub-increment, so the ratio target / measured scales it.
+        if (s.work_newton_iterations > 0.0) {
+            grow =
+                simd::min(grow, T(s.work_newton_iterations) / simd::max(full_iterations, T(1.0)));
+        }
+        if (s.work_model_substeps > 0.0) {
+            const T evaluations = simd::max(c.stats.evaluations - evaluations_before, T(1.0));
+            const T per_evaluation = (c.stats.model_substeps - substeps_before) / evaluations;
+            grow = simd::min(grow, T(s.work_model_substeps) / simd::max(per_evaluation, T(1.0)));
+        }
+        grow = simd::max(T(0.2), grow);
         const T shrink = simd::select(both, simd::max(T(0.2), simd::min(q, T(0.5))), T(0.25));
         // Forced lanes keep their size and halve it where Newton fails (forced_step_size).
         next_h = simd::select(c.forced, simd::select(accept, c.h, 0.5 * hl),

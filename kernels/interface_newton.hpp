@@ -65,6 +65,14 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
     // Lanes below the tolerance that still take their polishing corrections.
     T polish_left = T(static_cast<double>(s.polish_iterations));
     Mask met(false);
+    // Lanes that left the rate Jacobian for the perturbation one (newton_switch_ratio).
+    const bool may_switch =
+        s.newton_jacobian == NewtonJacobian::rate && s.newton_switch_ratio > 0.0;
+    Mask switched(false);
+    T r_before = T(0.0);
+    // Broyden's update needs the last iterate, residual and Jacobian of each lane.
+    std::array<T, 3> x_last{T(0.0), T(0.0), T(0.0)}, res_last{T(0.0), T(0.0), T(0.0)};
+    std::array<std::array<T, 3>, 3> J_last{};
     for (int it = 0; it <= s.max_newton_iterations + s.polish_iterations; ++it) {
         const Mask working = active && !out.converged && !failed;
         if (simd::none(working)) {
@@ -85,6 +93,11 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
         }
         const T r = simd::sqrt(r2) / ref;
         const Mask model_ok = ms.status > -0.5;
+        if (may_switch && it > 0) {
+            switched = switched || (working && model_ok && !met && (r >= s.tolerance) &&
+                                    (r > T(s.newton_switch_ratio) * r_before));
+        }
+        r_before = simd::select(working, r, r_before);
         met = met || (working && model_ok && (r < s.tolerance));
         const Mask now = working && model_ok && met && (polish_left < 0.5);
         out.y = select_state<T, NS>(now, yt, out.y);
@@ -110,8 +123,10 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
         }
 
         // Jacobian d sigma_normal / d eps_normal (Eq. 22).
-        const Mask by_difference =
-            s.newton_jacobian == NewtonJacobian::perturbation ? Mask(true) : perturbed;
+        const Mask by_broyden = s.newton_switch_broyden ? (switched && !perturbed) : Mask(false);
+        const Mask by_difference = s.newton_jacobian == NewtonJacobian::perturbation
+                                       ? Mask(true)
+                                       : (perturbed || (switched && !by_broyden));
         std::array<std::array<T, 3>, 3> J{};
         if (!simd::all(by_difference || !iterate)) {
             const auto cols = M::template rate_stiffness<T>(mp, s.model, y0, de);
@@ -131,6 +146,7 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
             UpdateStats<T> bs;
             material_update<M, T>(mp, s.model, fixed, yb, de, bs);
             stats.evaluations += simd::select(differenced, T(1.0), T(0.0));
+            stats.model_substeps += simd::select(differenced, bs.substeps, T(0.0));
             for (int c = 0; c < k; ++c) {
                 Sym<T> dp = de;
                 dp[c] += delta;
@@ -138,9 +154,40 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
                 UpdateStats<T> ps;
                 material_update<M, T>(mp, s.model, fixed, yp, dp, ps);
                 stats.evaluations += simd::select(differenced, T(1.0), T(0.0));
+                stats.model_substeps += simd::select(differenced, ps.substeps, T(0.0));
                 for (int rr = 0; rr < k; ++rr) {
                     J[rr][c] = simd::select(by_difference, (yp[rr] - yb[rr]) / delta, J[rr][c]);
                 }
+            }
+        }
+        if (simd::any(iterate && by_broyden)) {
+            // J = J_last + (dr - J_last dx) dx^T / dx^T dx, from the last step of this lane.
+            std::array<T, 3> dx{}, u{};
+            T dxx = T(0.0);
+            for (int c = 0; c < k; ++c) {
+                dx[c] = x[c] - x_last[c];
+                dxx += dx[c] * dx[c];
+            }
+            for (int rr = 0; rr < k; ++rr) {
+                T Jdx = T(0.0);
+                for (int c = 0; c < k; ++c) {
+                    Jdx += J_last[rr][c] * dx[c];
+                }
+                u[rr] = (res[rr] - res_last[rr]) - Jdx;
+            }
+            const Mask usable = iterate && by_broyden && (dxx > T(1.0e-300));
+            const T inv = T(1.0) / simd::select(usable, dxx, T(1.0));
+            for (int rr = 0; rr < k; ++rr) {
+                for (int c = 0; c < k; ++c) {
+                    J[rr][c] = simd::select(usable, J_last[rr][c] + u[rr] * dx[c] * inv, J[rr][c]);
+                }
+            }
+        }
+        for (int rr = 0; rr < k; ++rr) {
+            x_last[rr] = simd::select(iterate, x[rr], x_last[rr]);
+            res_last[rr] = simd::select(iterate, res[rr], res_last[rr]);
+            for (int c = 0; c < k; ++c) {
+                J_last[rr][c] = simd::select(iterate, J[rr][c], J_last[rr][c]);
             }
         }
         const SmallSolve<T> sol = small_solve<T>(k, J, res);

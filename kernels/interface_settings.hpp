@@ -32,6 +32,20 @@ struct InterfaceSettings {
     double tolerance = 2.0e-3;           // relative error of Eqs. 18-20, Algorithm 1 line 9
     bool adaptive = false;               // error-controlled sub-increments instead of fixed ones
     double adaptive_tolerance = 2.0e-3;  // local relative stress error per adaptive sub-increment
+    // Adaptive sub-increments, a bound on the work per sub-increment besides the error (> 0: on).
+    // An accepted sub-increment whose full solve took more Newton iterations than
+    // work_newton_iterations, or whose model evaluations took more of their own substeps on
+    // average than work_model_substeps, lets the next one grow at most by target / measured.
+    // The error alone lets a Sanisand band take large sub-increments where each evaluation
+    // costs 100-1000 substeps (the cone cap) and the rate-Jacobian Newton 45 iterations, 40x
+    // the work of the paper's small ones. It only ever shrinks what the error control chose.
+    // Measured on the coarse §6 runs with 8 and 4 (docs/large-scale-test.md, session 18):
+    // hypoplastic band 1.8x fewer substeps, Sanisand gravity stages 6x faster. Off by default
+    // until its effect on the difference Jacobians is understood: the substep count is an
+    // integer, so the chosen sub-increments jump with the inputs (test_contact_jacobian_low_
+    // stress moved from 1e-3 to 0.11 against central differences of whole calls).
+    double work_newton_iterations = 0.0;
+    double work_model_substeps = 0.0;
     int max_newton_iterations = 30;
     // Newton corrections applied after the residual of Eqs. 18-20 is below `tolerance`. The
     // paper stops at once (0). One more quadratic step leaves a residual of order tol^2, which
@@ -46,6 +60,20 @@ struct InterfaceSettings {
     double max_model_substeps = 1.0e6;
     NewtonJacobian newton_jacobian = NewtonJacobian::rate;
     double newton_perturbation = 1.0e-7; // relative strain perturbation of the Newton Jacobian
+    // With the rate Jacobian: a lane whose residual falls by less than this factor in one
+    // iteration (before it meets the tolerance) leaves the rate Jacobian for the rest of the
+    // sub-increment's Newton (0: never). Near its cone a Sanisand band's rate stiffness at the
+    // start state can be 20x its elastic one while the integrated response flows plastically:
+    // the rate Newton then creeps (1.3e-2 -> 1.2e-2 in 11 iterations), fails, and the halving
+    // only helps once the start guess alone meets the tolerance, 2^-16 of the size later; a
+    // held lane goes on at that size (4.8e5 sub-increments in one call). With a Jacobian that
+    // learns the band's stiffness it converges in 2-4 iterations (docs/large-scale-test.md,
+    // session 18). Off by default like the work bound above; 0.5 in the §6 Sanisand scene.
+    double newton_switch_ratio = 0.0;
+    // What a creeping lane switches to: false, the perturbation Jacobian (k + 1 more evaluations
+    // per iteration, each as dear as the base: the coarse hypoplastic run's contact time 2.2x);
+    // true, Broyden's rank-one updates of its last Jacobian (no more evaluations).
+    bool newton_switch_broyden = true;
     // With the rate Jacobian: a lane that would fail because its Newton does not converge even
     // at the smallest sub-increment gets a second try instead. It goes on from its last accepted
     // sub-increment, at the call's first sub-increment size, on the perturbation Jacobian. The

@@ -88,6 +88,8 @@ const std::vector<std::string_view>& boundary_value_interface_keys() {
                                                        "subincrement",
                                                        "max_subincrement",
                                                        "tolerance",
+                                                       "work_newton_iterations",
+                                                       "work_model_substeps",
                                                        "jacobian",
                                                        "perturbation",
                                                        "open_threshold",
@@ -99,6 +101,7 @@ const std::vector<std::string_view>& boundary_value_interface_keys() {
                                                        "model_integration",
                                                        "newton_jacobian",
                                                        "newton_fallback",
+                                                       "newton_switch_ratio",
                                                        "jacobian_tolerance",
                                                        "polish_iterations",
                                                        "adaptive_partition",
@@ -145,8 +148,9 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     const InterfaceFormulationSpec& f = out.formulation;
     if (f.is_coulomb()) {
         constexpr std::string_view algorithm1_keys[] = {
-            "model_tolerance",   "model_integration",  "newton_jacobian", "jacobian_tolerance",
-            "polish_iterations", "adaptive_partition", "defer_jacobian",  "newton_fallback"};
+            "model_tolerance",    "model_integration", "newton_jacobian",
+            "jacobian_tolerance", "polish_iterations", "adaptive_partition",
+            "defer_jacobian",     "newton_fallback",   "newton_switch_ratio"};
         t.reject(algorithm1_keys, algorithm1_key_with_coulomb);
         constexpr std::string_view viscosity_key[] = {"slip_viscosity", "slip_viscosity_use"};
         t.reject(viscosity_key, "regularises a continuum interface band past its peak; "
@@ -182,6 +186,9 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     // With the rate Jacobian: a point whose Newton fails gets a second try on the difference
     // Jacobian.
     is.newton_fallback = t.boolean_or("newton_fallback", is.newton_fallback);
+    // With the rate Jacobian: a lane whose Newton creeps goes on with the difference Jacobian.
+    is.newton_switch_ratio =
+        t.number_or("newton_switch_ratio", is.newton_switch_ratio, Bounds::closed_open(0.0, 1.0));
     is.jacobian_tolerance =
         t.number_or("jacobian_tolerance", is.jacobian_tolerance, Bounds::closed_open(0.0, 1.0));
     is.polish_iterations =

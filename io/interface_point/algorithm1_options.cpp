@@ -22,6 +22,8 @@ void visit_options(ContactOptions& o, Visitor& v) {
     v.number("tolerance", s.tolerance, Bounds::open(0.0, 1.0));
     v.flag("adaptive", s.adaptive);
     v.number("adaptive_tolerance", s.adaptive_tolerance, Bounds::open(0.0, 1.0));
+    v.number("work_newton_iterations", s.work_newton_iterations, Bounds::non_negative());
+    v.number("work_model_substeps", s.work_model_substeps, Bounds::non_negative());
     v.integer("max_newton_iterations", s.max_newton_iterations, 1, 10'000);
     v.integer("polish_iterations", s.polish_iterations, 0, 10);
     v.integer("max_subincrements", s.max_subincrements, 1, 1'000'000'000'000);
@@ -30,6 +32,8 @@ void visit_options(ContactOptions& o, Visitor& v) {
              std::array<std::string_view, 2>{"rate", "perturbation"});
     v.number("newton_perturbation", s.newton_perturbation, Bounds::open(0.0, 1.0));
     v.flag("newton_fallback", s.newton_fallback);
+    v.number("newton_switch_ratio", s.newton_switch_ratio, Bounds::closed_open(0.0, 1.0));
+    v.flag("newton_switch_broyden", s.newton_switch_broyden);
     v.number("min_band_fraction", s.min_band_fraction, Bounds::open(0.0, 1.0));
     v.number("max_normal_change", s.max_normal_change, Bounds::positive());
     v.number("open_threshold", s.open_threshold, Bounds::non_negative());

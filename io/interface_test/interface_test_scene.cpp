@@ -66,8 +66,9 @@ void check_friction_cone(const TableReader& t, const CoulombParams& p, const Sam
 void read_interface(const TableReader& t, InterfaceTestScene& scene, const SampleStart& sample) {
     t.allow_only({"formulation", "model", "parameters", "roughness", "shear_band_thickness",
                   "stutz_initial_stress", "friction_coefficient", "tangential_stiffness",
-                  "subincrement", "max_subincrement", "tolerance", "jacobian", "perturbation",
-                  "void_ratio", "intergranular_strain", "back_stress", "fabric"});
+                  "subincrement", "max_subincrement", "tolerance", "work_newton_iterations",
+                  "work_model_substeps", "jacobian", "perturbation", "void_ratio",
+                  "intergranular_strain", "back_stress", "fabric"});
     const InterfaceFormulationSpec f = read_interface_formulation(t);
     if (f.is_coulomb()) {
         scene.spec.contact.interface.formulation = InterfaceFormulation::coulomb;

@@ -19,6 +19,8 @@ constexpr std::string_view continuum_keys[] = {"model",
                                                "subincrement",
                                                "max_subincrement",
                                                "tolerance",
+                                               "work_newton_iterations",
+                                               "work_model_substeps",
                                                "jacobian",
                                                "perturbation",
                                                "open_threshold",
@@ -56,6 +58,11 @@ void read_continuum(const TableReader& t, InterfaceFormulationSpec& spec) {
     s.max_subincrement = t.number_or("max_subincrement", 5.0e-6, Bounds::positive());
     s.tolerance = t.number_or("tolerance", 2.0e-3, Bounds::open(0.0, 1.0));
     s.adaptive_tolerance = s.tolerance; // the contract: one tolerance for both unless refined
+    // The work bound of the adaptive sub-increments (kernels/interface_settings.hpp).
+    s.work_newton_iterations =
+        t.number_or("work_newton_iterations", s.work_newton_iterations, Bounds::non_negative());
+    s.work_model_substeps =
+        t.number_or("work_model_substeps", s.work_model_substeps, Bounds::non_negative());
     spec.jacobian = t.choice_or("jacobian", "perturbation",
                                 {"perturbation", "central", "full-perturbation", "analytical"});
     c.jacobian = spec.jacobian == "perturbation"        ? ContactJacobian::perturbation
