@@ -206,3 +206,27 @@ TEST(InterfaceNewtonSwitch, BatchLaneMatchesScalarAndSparesItsNeighbours) {
         }
     }
 }
+
+// The other target of the switch (newton_switch_broyden = false): the perturbation Jacobian,
+// k + 1 more evaluations per iteration. The held reversing band ends with it too, at the
+// solution the Broyden updates reach (both meet Eqs. 18-20 to the tolerance on the same
+// discretisation up to where a held sub-increment halves).
+TEST(InterfaceNewtonSwitch, PerturbationTargetEndsTheHeldBandToo) {
+    const auto mp = karlsruhe_sanisand(1.0);
+    const auto in = held_call(212.0);
+    InterfaceSettings perturbation = the_run_settings(0.5);
+    perturbation.newton_switch_broyden = false;
+    const auto p = direct_update<Sanisand>(mp, perturbation, reversing_band(), in);
+    ASSERT_EQ(p.stats.status, lane_status::ok);
+    EXPECT_LT(p.stats.subincrements, 1.0e4);
+    const auto b = direct_update<Sanisand>(mp, the_run_settings(0.5), reversing_band(), in);
+    ASSERT_EQ(b.stats.status, lane_status::ok);
+    // The perturbation lanes cost evaluations the Broyden updates do not.
+    EXPECT_GT(p.stats.evaluations / p.stats.newton_iterations,
+              b.stats.evaluations / b.stats.newton_iterations);
+    for (int k = 0; k < 5; ++k) {
+        EXPECT_LT(std::abs(p.st.y[k] - b.st.y[k]),
+                  5.0 * perturbation.adaptive_tolerance * std::abs(in.t_N))
+            << "stress " << k << ": " << p.st.y[k] << " against " << b.st.y[k];
+    }
+}
