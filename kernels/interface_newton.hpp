@@ -65,7 +65,8 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
     // Lanes below the tolerance that still take their polishing corrections.
     T polish_left = T(static_cast<double>(s.polish_iterations));
     Mask met(false);
-    // Lanes that left the rate Jacobian for the perturbation one (newton_switch_ratio).
+    // Lanes that left the rate Jacobian (newton_switch_ratio) for Broyden updates or the
+    // perturbation Jacobian (newton_switch_broyden).
     const bool may_switch =
         s.newton_jacobian == NewtonJacobian::rate && s.newton_switch_ratio > 0.0;
     Mask switched(false);
@@ -183,7 +184,7 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
                 }
             }
         }
-        for (int rr = 0; rr < k; ++rr) {
+        for (int rr = 0; rr < k && may_switch && s.newton_switch_broyden; ++rr) {
             x_last[rr] = simd::select(iterate, x[rr], x_last[rr]);
             res_last[rr] = simd::select(iterate, res[rr], res_last[rr]);
             for (int c = 0; c < k; ++c) {
