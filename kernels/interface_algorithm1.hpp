@@ -293,7 +293,7 @@ void interface_step(const typename M::Params& mp, const InterfaceSettings& s,
                               simd::select(accept, hl * grow, hl * shrink));
         // A sub-increment that cannot be made small enough ends the lane as failed, or where a
         // Newton failed, gives it its second try.
-        const Mask smallest = c.active && !accept && (hl * c.total < 1.0e-12);
+        const Mask smallest = c.active && !accept && (hl * c.total < s.min_subincrement);
         const Mask retried = second_try(smallest && !both);
         const Mask too_small = smallest && !retried;
         next_h = simd::select(retried, c.h0, next_h);
@@ -323,7 +323,7 @@ void interface_step(const typename M::Params& mp, const InterfaceSettings& s,
         // discretisation) and its perturbations almost always split at the same places, so
         // their differences stay derivatives of one discretisation. Failing them instead
         // dropped their point's Jacobian columns (docs/large-scale-test.md).
-        const Mask retry = c.active && !full.converged && (hl * c.total >= 1.0e-12);
+        const Mask retry = c.active && !full.converged && (hl * c.total >= s.min_subincrement);
         const Mask retried = second_try(c.active && !full.converged && !retry);
         c.h = simd::select(retry, 0.5 * hl, simd::select(retried, c.h0, c.h));
         const Mask ends = c.active && !retry && !retried;

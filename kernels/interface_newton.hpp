@@ -74,6 +74,7 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
     // Broyden's update needs the last iterate, residual and Jacobian of each lane.
     std::array<T, 3> x_last{T(0.0), T(0.0), T(0.0)}, res_last{T(0.0), T(0.0), T(0.0)};
     std::array<std::array<T, 3>, 3> J_last{};
+    const bool broyden = may_switch && s.newton_switch_broyden;
     for (int it = 0; it <= s.max_newton_iterations + s.polish_iterations; ++it) {
         const Mask working = active && !out.converged && !failed;
         if (simd::none(working)) {
@@ -99,27 +100,38 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
                                     (r > T(s.newton_switch_ratio) * r_before));
         }
         r_before = simd::select(working, r, r_before);
-        met = met || (working && model_ok && (r < s.tolerance));
-        const Mask now = working && model_ok && met && (polish_left < 0.5);
-        out.y = select_state<T, NS>(now, yt, out.y);
+        // The iterate that first meets the tolerance is the result unless a polishing
+        // correction ends below the tolerance too: a correction that leaves it (a wild step
+        // from a poor Jacobian) must not replace a converged state.
+        const Mask first_met = working && model_ok && !met && (r < s.tolerance);
+        met = met || first_met;
+        out.y = select_state<T, NS>(first_met, yt, out.y);
         for (int c = 0; c < 3; ++c) {
-            out.x[c] = simd::select(now, x[c], out.x[c]);
+            out.x[c] = simd::select(first_met, x[c], out.x[c]);
         }
-        out.residual = simd::select(now, r, out.residual);
+        out.residual = simd::select(first_met, r, out.residual);
+        const Mask now = working && met && (polish_left < 0.5 || !model_ok);
+        const Mask polished = now && !first_met && model_ok && (r < s.tolerance);
+        out.y = select_state<T, NS>(polished, yt, out.y);
+        for (int c = 0; c < 3; ++c) {
+            out.x[c] = simd::select(polished, x[c], out.x[c]);
+        }
+        out.residual = simd::select(polished, r, out.residual);
         out.converged = out.converged || now;
-        failed = failed || (working && !model_ok);
-        out.model_failed = out.model_failed || (working && !model_ok);
+        failed = failed || (working && !model_ok && !met);
+        out.model_failed = out.model_failed || (working && !model_ok && !met);
         const Mask iterate = working && !now && model_ok;
         polish_left = simd::select(iterate && met, polish_left - 1.0, polish_left);
         if (simd::none(iterate) || it == s.max_newton_iterations + s.polish_iterations) {
-            // Lanes that met the tolerance but ran out of iterations keep their last iterate.
-            const Mask take = iterate && met;
+            // Lanes that met the tolerance but ran out of iterations keep their last iterate
+            // if it is still below the tolerance, else the one that met it.
+            const Mask take = iterate && met && !first_met && (r < s.tolerance);
             out.y = select_state<T, NS>(take, yt, out.y);
             for (int c = 0; c < 3; ++c) {
                 out.x[c] = simd::select(take, x[c], out.x[c]);
             }
-            out.converged = out.converged || take;
-            out.residual = simd::select(iterate, r, out.residual);
+            out.converged = out.converged || (iterate && met);
+            out.residual = simd::select(take || (iterate && !met), r, out.residual);
             break;
         }
 
@@ -184,7 +196,7 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
                 }
             }
         }
-        for (int rr = 0; rr < k && may_switch && s.newton_switch_broyden; ++rr) {
+        for (int rr = 0; rr < k && broyden; ++rr) {
             x_last[rr] = simd::select(iterate, x[rr], x_last[rr]);
             res_last[rr] = simd::select(iterate, res[rr], res_last[rr]);
             for (int c = 0; c < k; ++c) {
@@ -192,10 +204,14 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
             }
         }
         const SmallSolve<T> sol = small_solve<T>(k, J, res);
-        failed = failed || (iterate && !sol.solved);
+        // A lane that met the tolerance and cannot take its polishing correction keeps the
+        // iterate that met it.
+        const Mask unsolved = iterate && !sol.solved;
+        out.converged = out.converged || (unsolved && met);
+        failed = failed || (unsolved && !met);
         // A failed lane reports where it stood (a residual of 0 would say nothing).
-        out.singular = out.singular || (iterate && !sol.solved);
-        out.residual = simd::select(iterate && !sol.solved, r, out.residual);
+        out.singular = out.singular || (unsolved && !met);
+        out.residual = simd::select(unsolved && !met, r, out.residual);
         const Mask step = iterate && sol.solved;
         for (int c = 0; c < k; ++c) {
             x[c] = simd::select(step, x[c] - sol.x[c], x[c]);

@@ -54,6 +54,9 @@ struct InterfaceSettings {
     // docs/interface.md for the measurements behind this default.
     int polish_iterations = 1;
     long max_subincrements = 2'000'000; // per call, a guard against runaway refinement
+    // The smallest sub-increment (largest shear-strain component) a failing one is cut to
+    // before the lane fails or takes its second try (newton_fallback).
+    double min_subincrement = 1.0e-12;
     // Per call and lane: the model's own substeps in Algorithm 1's Newton evaluations. A bound
     // on one evaluation's work (a Sanisand band at kappa = 0.05 spent 6.8e6 in one call, 90 s);
     // the drivers bound a whole step on top (max_step_substeps).
@@ -66,9 +69,12 @@ struct InterfaceSettings {
     // start state can be 20x its elastic one while the integrated response flows plastically:
     // the rate Newton then creeps (1.3e-2 -> 1.2e-2 in 11 iterations), fails, and the halving
     // only helps once the start guess alone meets the tolerance, 2^-16 of the size later; a
-    // held lane goes on at that size (4.8e5 sub-increments in one call). With a Jacobian that
-    // learns the band's stiffness it converges in 2-4 iterations (docs/large-scale-test.md,
-    // session 18). Off by default like the work bound above; 0.5 in the §6 Sanisand scene.
+    // held lane goes on at that size (4.8e5 sub-increments in one call, most of them the
+    // effect of polishing corrections taken far from the solution, fixed in session 19; since
+    // then 1.3e4). With a Jacobian that learns the band's stiffness it converges in 2-4
+    // iterations and takes 16x fewer sub-increments for the same model substeps
+    // (docs/large-scale-test.md, sessions 18-19). Off by default like the work bound above; 0.5
+    // in the §6 Sanisand scene.
     double newton_switch_ratio = 0.0;
     // What a creeping lane switches to: false, the perturbation Jacobian (k + 1 more evaluations
     // per iteration, each as dear as the base: the coarse hypoplastic run's contact time 2.2x);

@@ -27,6 +27,7 @@ void visit_options(ContactOptions& o, Visitor& v) {
     v.integer("max_newton_iterations", s.max_newton_iterations, 1, 10'000);
     v.integer("polish_iterations", s.polish_iterations, 0, 10);
     v.integer("max_subincrements", s.max_subincrements, 1, 1'000'000'000'000);
+    v.number("min_subincrement", s.min_subincrement, Bounds::positive());
     v.number("max_model_substeps", s.max_model_substeps, Bounds::positive());
     v.choice("newton_jacobian", s.newton_jacobian,
              std::array<std::string_view, 2>{"rate", "perturbation"});

@@ -3,10 +3,13 @@
 // coarse §6 run's first wall step (docs/large-scale-test.md, session 18), held at 212 equal
 // sub-increments, whose shear reverses (tau -4.4 -> +1.5 kPa) while t_N falls from -2.65 to
 // -1.80 kPa. Near its cone the rate stiffness at the start state is up to 20x the elastic one;
-// the rate Newton creeps, each failure halves the held size for the rest of the call, and the
-// call ended at the work limit after 4.8e5 sub-increments. Checked: with the switch the call
-// succeeds and agrees with fine fixed sub-increments; lanes whose rate Newton contracts are
-// untouched bit for bit; a SIMD lane ends where the scalar one does and spares its neighbours.
+// the rate Newton creeps, and each failure halves the held size for the rest of the call. In
+// session 18 the call ended at the work limit after 4.8e5 sub-increments; most of that was a
+// polishing correction taken far from the solution (fixed in session 19, kernels/
+// interface_newton.hpp). Without the switch it now succeeds with 1.3e4 sub-increments, with it
+// 16x fewer. Checked: with the switch the call takes far fewer sub-increments and agrees with
+// fine fixed sub-increments; lanes whose rate Newton contracts are untouched bit for bit; a SIMD
+// lane ends where the scalar one does and spares its neighbours.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -95,19 +98,19 @@ InterfaceInput<double> ordinary_call(double v) {
 
 } // namespace
 
-TEST(InterfaceNewtonSwitch, HeldReversingBandEndsAndAgreesWithFineSubincrements) {
+TEST(InterfaceNewtonSwitch, HeldReversingBandHalvesLessAndAgreesWithFineSubincrements) {
     const auto mp = karlsruhe_sanisand(1.0);
     const auto in = held_call(212.0);
     const auto creeping = direct_update<Sanisand>(mp, the_run_settings(0.0), reversing_band(), in);
-    // Without the switch: halved towards nothing, then the work limit.
-    ASSERT_EQ(creeping.stats.status, lane_status::failed);
-    EXPECT_EQ(creeping.stats.cause, interface_failure::work_limit);
-    EXPECT_GT(creeping.stats.subincrements, 1.0e5);
+    // Without the switch: the creeping Newton halves the held size many times (measured 13 422
+    // sub-increments for the 212 held ones).
+    ASSERT_EQ(creeping.stats.status, lane_status::ok);
+    EXPECT_GT(creeping.stats.subincrements, 5.0e3);
 
     const InterfaceSettings s = the_run_settings(0.5);
     const auto r = direct_update<Sanisand>(mp, s, reversing_band(), in);
     ASSERT_EQ(r.stats.status, lane_status::ok);
-    EXPECT_LT(r.stats.subincrements, 1.0e4);
+    EXPECT_LT(r.stats.subincrements, 0.2 * creeping.stats.subincrements); // measured 839
     EXPECT_LT(r.stats.model_substeps, 0.1 * s.max_model_substeps);
 
     InterfaceSettings fine = the_run_settings(0.5);
@@ -208,7 +211,7 @@ TEST(InterfaceNewtonSwitch, BatchLaneMatchesScalarAndSparesItsNeighbours) {
 }
 
 // The other target of the switch (newton_switch_broyden = false): the perturbation Jacobian,
-// k + 1 more evaluations per iteration. The held reversing band ends with it too, at the
+// k + 1 more evaluations per iteration. The held reversing band ends with it, at the
 // solution the Broyden updates reach (both meet Eqs. 18-20 to the tolerance on the same
 // discretisation up to where a held sub-increment halves).
 TEST(InterfaceNewtonSwitch, PerturbationTargetEndsTheHeldBandToo) {
@@ -217,8 +220,9 @@ TEST(InterfaceNewtonSwitch, PerturbationTargetEndsTheHeldBandToo) {
     InterfaceSettings perturbation = the_run_settings(0.5);
     perturbation.newton_switch_broyden = false;
     const auto p = direct_update<Sanisand>(mp, perturbation, reversing_band(), in);
+    // (It halves as often as the rate Newton alone, 1.3e4 sub-increments: the k + 1
+    // evaluations per iteration buy nothing on this band since the polish guard.)
     ASSERT_EQ(p.stats.status, lane_status::ok);
-    EXPECT_LT(p.stats.subincrements, 1.0e4);
     const auto b = direct_update<Sanisand>(mp, the_run_settings(0.5), reversing_band(), in);
     ASSERT_EQ(b.stats.status, lane_status::ok);
     // The perturbation lanes cost evaluations the Broyden updates do not.

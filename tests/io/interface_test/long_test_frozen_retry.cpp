@@ -1,8 +1,13 @@
 // A step whose Newton iteration stalls on the noise of adaptive step selection (the residual
 // jumps by about the integration tolerances as the unknowns move) is solved again with the
-// discretisation of its first evaluation frozen: 47 steps of a loose Sanisand band (2-3 s). At a
-// step tolerance of 1e-6 the frozen solves stall too and the run fails without the stagnation
-// acceptance (10-20 s).
+// discretisation of its first evaluation frozen: 47 steps of a loose Sanisand band (2-3 s).
+// Until session 19 the stall came at the default step tolerance 1e-4 (step 47 at 1.6e-4), and at
+// 1e-6 the frozen solves stalled too, so the stagnation acceptance was needed. Most of that noise
+// was Algorithm 1's polishing correction replacing converged iterates by worse ones
+// (kernels/interface_newton.hpp); since that guard the run completes at 1e-4 and 1e-6 with no
+// retry, and the retry is first needed at 1e-8. The stagnation acceptance has no trigger on this
+// scene any more (tried: step tolerances down to 1e-14, Algorithm 1 tolerances up to 0.05,
+// no polishing step).
 
 #include <algorithm>
 #include <cmath>
@@ -114,34 +119,31 @@ nlohmann::json run_stall_scene(const std::string& tag, const std::vector<std::st
 
 // The stalls below come from Algorithm 1's rate-Jacobian Newton (linear convergence, so the
 // residual it stops at jumps with its iteration count). Its second try on the perturbation
-// Jacobian (newton_fallback_iterations, on by default) removes them, so the retry and the
-// stagnation acceptance are tested with it switched off.
+// Jacobian (newton_fallback_iterations, on by default) removes them, so the retry is tested
+// with it switched off.
 const std::string no_second_try = "integration.interface_newton_fallback=false";
 
-TEST(InterfaceFrozenRetry, StepStalledOnStepSelectionNoiseCompletes) {
-    const auto summary = run_stall_scene("default", {no_second_try}, exit_code::ok);
-    EXPECT_EQ(summary["status"], "ok");
-    // The run went through the retry (one step stalls on its adaptive discretisation).
-    EXPECT_GT(summary["counters"]["frozen_retries"].get<int>(), 0);
-    EXPECT_EQ(summary["counters"]["stagnation_accepts"].get<int>(), 0); // off by default
+// The polish guard removed the stall of session 15: both step tolerances complete without a
+// frozen retry, also with Algorithm 1's second try off.
+TEST(InterfaceFrozenRetry, FormerStallsCompleteWithoutTheRetry) {
+    for (const std::string tol : {"1e-4", "1e-6"}) {
+        const auto summary =
+            run_stall_scene("no-retry-" + tol,
+                            {no_second_try, "integration.newton_tolerance=" + tol}, exit_code::ok);
+        EXPECT_EQ(summary["status"], "ok") << tol;
+        EXPECT_EQ(summary["counters"]["frozen_retries"].get<int>(), 0) << tol;
+        EXPECT_EQ(summary["counters"]["stagnation_accepts"].get<int>(), 0) << tol;
+    }
 }
 
-// At a step tolerance of 1e-6 the frozen solves stall as well (step 46 at 7.7e-5, the noise of
-// the band model's own adaptive substeps, which the retry does not freeze): without the
-// stagnation acceptance the run fails there; with it the best iterate below 1e-4 is taken and
-// every row keeps equilibrium to that bound.
-TEST(InterfaceFrozenRetry, TightToleranceStallIsAcceptedBelowTheStagnationTolerance) {
-    const auto strict = run_stall_scene(
-        "strict", {no_second_try, "integration.newton_tolerance=1e-6"}, exit_code::run_failed);
-    EXPECT_NE(strict["reason"].get<std::string>().find("did not converge"), std::string::npos)
-        << strict["reason"];
-    const auto accepted = run_stall_scene("accepted",
-                                          {no_second_try, "integration.newton_tolerance=1e-6",
-                                           "integration.stagnation_tolerance=1e-4"},
-                                          exit_code::ok);
-    EXPECT_EQ(accepted["status"], "ok");
-    EXPECT_GT(accepted["counters"]["stagnation_accepts"].get<int>(), 0);
-    EXPECT_GT(accepted["counters"]["frozen_retries"].get<int>(), 0);
+// At a step tolerance of 1e-8 the adaptive step selection's noise stalls a step; the frozen
+// retry solves it and the run completes with every row in equilibrium.
+TEST(InterfaceFrozenRetry, StepStalledOnStepSelectionNoiseCompletes) {
+    const auto summary = run_stall_scene(
+        "tight", {no_second_try, "integration.newton_tolerance=1e-8"}, exit_code::ok);
+    EXPECT_EQ(summary["status"], "ok");
+    EXPECT_GT(summary["counters"]["frozen_retries"].get<int>(), 0);
+    EXPECT_EQ(summary["counters"]["stagnation_accepts"].get<int>(), 0); // off by default
 }
 
 // With the second try (the default) neither stall happens: both step tolerances complete with
