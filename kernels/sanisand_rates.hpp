@@ -149,6 +149,21 @@ T loading_denominator(const Point<T>& q, const Plastic<T>& k) {
     return simd::max(den, 0.1 * 2.0 * q.G * k.n_Rdev);
 }
 
+// The hardening coefficient that belongs to the floored denominator den. The floor raises Kp
+// to Kp + (den - den_raw); with Kp = (2/3) p h b:n that is h scaled by the ratio of the two,
+// a factor in [0, 1] in softening (Kp < 0). Why: right after a reversal beyond the bounding
+// surface h sits at its cap (b0 / 1e-10); the floored L times that h moved alpha by O(1) in a
+// substep of 1e-15 strain, the drift correction put it back, the next substep saw a reversal
+// again, and the integration stalled at its smallest substep for its whole attempt budget
+// (docs/models.md). With this h, alpha moves as the consistency condition demands.
+template <class T>
+T consistent_h(const Point<T>& q, const Plastic<T>& k, const T& den) {
+    const T den_raw = k.Kp + 2.0 * q.G * k.n_Rdev - q.K * k.D * k.N;
+    const T Kp_floored = k.Kp + (den - den_raw);
+    const T ratio = Kp_floored / simd::min(k.Kp, T(-1.0e-300));
+    return simd::select(k.Kp < 0.0, k.h * simd::max(T(0.0), simd::min(T(1.0), ratio)), k.h);
+}
+
 // Increment of the flat state for the mechanical strain increment de (explicit Euler rate).
 // Plasticity acts in lanes of plastic_allowed whose loading numerator is positive.
 template <class T>
@@ -180,8 +195,8 @@ State<T> increment(const SanisandParams& P, const IntegrationSettings& s, const 
         for (int i = 0; i < 6; ++i) {
             dsig[i] -= L * (2.0 * q.G * k.Rdev[i] + (i < 3 ? q.K * k.D : T(0.0)));
         }
-        // dalpha = L (2/3) h b
-        set_sym_at(dy, alpha_index, voigt::scale(k.b, L * (2.0 / 3.0) * k.h));
+        // dalpha = L (2/3) h b, with h consistent with the floored denominator
+        set_sym_at(dy, alpha_index, voigt::scale(k.b, L * (2.0 / 3.0) * consistent_h(q, k, den)));
         // dz = -c_z <-deps_v^p> (z_max n + z), deps_v^p = L D
         const T dil = simd::max(-L * k.D, T(0.0));
         const Sym<T> target = voigt::axpy(voigt::deviator(sym_at(y, z_index)), T(P.z_max), q.n);
