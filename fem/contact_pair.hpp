@@ -183,6 +183,9 @@ public:
     virtual double regather(const ElementStresses&) { return 0.0; }
     // Back to the targets before the last regather (it was a probe).
     virtual void restore_targets() {}
+    // The last regather did not settle: its targets become the Aitken-relaxed step from the
+    // targets before it (SolverSettings::gather_aitken; the history restarts each increment).
+    virtual void relax_targets() {}
     // After Newton converged with sub-increments held through the increment
     // (ContactPairSpec::hold_partition): the points whose slip moved by more than
     // (partition_regrowth - 1) times the one their sub-increments were chosen for (at least the

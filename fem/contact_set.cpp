@@ -50,6 +50,12 @@ void ContactSet::restore_targets() {
     }
 }
 
+void ContactSet::relax_targets() {
+    for (auto& c : pairs_) {
+        c->relax_targets();
+    }
+}
+
 std::size_t ContactSet::release_outgrown_partitions() {
     std::size_t n = 0;
     for (auto& c : pairs_) {

@@ -60,6 +60,8 @@ public:
     double regather(const ElementStresses& trial);
     // Back to the targets before the last regather.
     void restore_targets();
+    // Aitken relaxation of the last regather's targets, pair by pair.
+    void relax_targets();
     // Points over all pairs whose held sub-increments were released (ContactPair).
     std::size_t release_outgrown_partitions();
     void hold_chosen_partitions();

@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "engine/contact_update.hpp"
+#include "fem/aitken_relaxation.hpp"
 #include "fem/contact_pair_base.hpp"
 
 namespace ifsim::fem::detail {
@@ -227,12 +228,39 @@ protected:
         targets_before_gather_.clear();
     }
 
+    void relax_targets() override {
+        if (targets_before_gather_.size() != local_stress_.size()) {
+            return;
+        }
+        // The residual G(x) - x of the in-plane targets of the closed points, in a fixed order.
+        residual_.clear();
+        for (std::size_t i = 0; i < local_stress_.size(); ++i) {
+            if (!kin_->point(i).active || open(i)) {
+                continue;
+            }
+            for (std::size_t c = 1; c <= 2; ++c) {
+                residual_.push_back(local_stress_[i][c] - targets_before_gather_[i][c]);
+            }
+        }
+        const double omega = aitken_.factor(residual_);
+        for (std::size_t i = 0; i < local_stress_.size(); ++i) {
+            if (!kin_->point(i).active || open(i)) {
+                continue;
+            }
+            for (std::size_t c = 1; c <= 2; ++c) {
+                const double x = targets_before_gather_[i][c];
+                local_stress_[i][c] = x + omega * (local_stress_[i][c] - x);
+            }
+        }
+    }
+
     // t_N of the last evaluation above -open_threshold: the band runs on its own targets.
     bool open(std::size_t i) const {
         return points_.input(contact_col::t_N)[i] > -spec_.options.interface.open_threshold;
     }
 
     void new_increment() override {
+        aitken_.reset();
         held_count_.assign(held_count_.size(), 0.0);
         calm_.resize(relax_.size(), 0);
         for (std::size_t i = 0; i < relax_.size(); ++i) {
@@ -422,6 +450,8 @@ private:
     std::vector<double> relax_; // per point: share lambda of the continuum's in-plane targets
     std::vector<int> calm_;     // per point: increments since its last relaxation
     std::vector<Voigt6> targets_before_gather_; // local_stress_ before the last regather
+    AitkenRelaxation aitken_;                   // of the gathers within one increment
+    std::vector<double> residual_;              // scratch of relax_targets()
     double k_lo_ = 0.5; // 1 - sin(kappa phi_c): at-rest bounds of the in-plane targets
     // Per point, within the current increment: the equal sub-increments held (0: none yet)
     // and the slip (dg1, dg2) they were chosen for (ContactPairSpec::hold_partition).

@@ -102,6 +102,10 @@ struct SolverSettings {
     // the paper (targets from the last converged increment; error O(increment)).
     double gather_tolerance = 1.0e-3;
     int max_gathers = 10;
+    // Aitken's dynamic relaxation of the gathers that did not settle (fem/aitken_relaxation.hpp):
+    // the gather is a fixed-point iteration on the targets, and on the §6 Sanisand runs it
+    // contracted by only ~0.8 per round (ten rounds, then a cut at max_gathers).
+    bool gather_aitken = false;
     // Early gather: once a Newton solve's relative residual is at most this, the targets are
     // gathered once before it converges; when they moved by more than gather_tolerance the
     // next solve starts there, instead of converging the last digits with targets about to be

@@ -368,6 +368,9 @@ bool StaticSolver::targets_settled(IncrementInfo& info, std::string& error, bool
     }
     ++info.gathers;
     ++counters_.gathers;
+    if (settings_.gather_aitken) {
+        contacts_.relax_targets();
+    }
     return false;
 }
 

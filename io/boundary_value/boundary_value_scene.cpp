@@ -30,6 +30,7 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
                   "stagnation_tolerance",
                   "gather_tolerance",
                   "max_gathers",
+                  "gather_relaxation",
                   "early_gather_residual",
                   "linear_solver",
                   "tangent",
@@ -56,6 +57,8 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
     s.gather_tolerance =
         t.number_or("gather_tolerance", s.gather_tolerance, Bounds::open(0.0, 1.0));
     s.max_gathers = static_cast<int>(t.integer_or("max_gathers", s.max_gathers, 0, 1000));
+    s.gather_aitken = t.choice_or("gather_relaxation", s.gather_aitken ? "aitken" : "none",
+                                  {"none", "aitken"}) == "aitken";
     s.early_gather_residual = t.number_or("early_gather_residual", s.early_gather_residual,
                                           Bounds::closed_open(0.0, 1.0));
     s.check_tangent = t.boolean_or("check_tangent", false);
