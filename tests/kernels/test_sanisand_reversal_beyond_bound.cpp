@@ -3,13 +3,14 @@
 // state on the cone (the consistency condition), and the evaluation the rough segment of the
 // fine §6 run stalled in (p = 4 kPa, tau/p = 1.6, |z| = 45; docs/large-scale-test.md, "State
 // after session 20") must finish in a modest number of substeps, independent of how the
-// increment is split.
+// increment is split, and lane by lane the same on the SIMD path.
 //
 // Before the hardening coefficient followed the floored denominator, alpha moved by O(1) over a
 // substep of ~1e-15 strain, the drift correction put it back, and the evaluation stalled at the
 // smallest substep until its attempt budget (200 000) ran out.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "kernels/material_update.hpp"
@@ -140,6 +141,46 @@ TEST(SanisandReversalBeyondBound, StalledEvaluationFinishesAndIsSplitIndependent
     EXPECT_LT(voigt::norm(voigt::sub(sym_at(one, Sanisand::alpha_index),
                                      sym_at(many, Sanisand::alpha_index))),
               2e-3 * voigt::norm(sym_at(many, Sanisand::alpha_index)));
+}
+
+// The SIMD path (the engine's) takes the stalled evaluation as the scalar path does, lane by
+// lane, with the triaxial state in the other lanes.
+TEST(SanisandReversalBeyondBound, SimdLanesMatchTheScalarPath) {
+    const auto P = karlsruhe();
+    const IntegrationSettings s = contact_model_integration();
+    std::array<Y, W> ys;
+    std::array<Sym<double>, W> ds;
+    for (std::size_t l = 0; l < W; ++l) {
+        ys[l] = l % 2 == 0 ? stalled_state() : triaxial_beyond_bound();
+        ds[l] = l % 2 == 0 ? stalled_increment() : axial_compression(1e-5);
+    }
+    YB yb;
+    Sym<Batch> db;
+    for (int k = 0; k < Sanisand::n_state; ++k) {
+        alignas(64) double buf[W];
+        for (std::size_t l = 0; l < W; ++l) {
+            buf[l] = ys[l][k];
+        }
+        yb[k] = Batch::load_aligned(buf);
+    }
+    for (int k = 0; k < 6; ++k) {
+        alignas(64) double buf[W];
+        for (std::size_t l = 0; l < W; ++l) {
+            buf[l] = ds[l][k];
+        }
+        db[k] = Batch::load_aligned(buf);
+    }
+    UpdateStats<Batch> sb;
+    material_update<Sanisand, Batch>(P, s, {}, yb, db, sb);
+    for (std::size_t l = 0; l < W; ++l) {
+        Y ref = ys[l];
+        const auto st = step(P, ref, ds[l], s);
+        EXPECT_EQ(simd::lane(sb.status, l), st.status) << "lane " << l;
+        for (int k = 0; k < Sanisand::n_state; ++k) {
+            EXPECT_NEAR(simd::lane(yb[k], l), ref[k], 1e-9 * (1.0 + std::fabs(ref[k])))
+                << "lane " << l << " entry " << k;
+        }
+    }
 }
 
 } // namespace
