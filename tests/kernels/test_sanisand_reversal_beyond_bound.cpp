@@ -154,22 +154,8 @@ TEST(SanisandReversalBeyondBound, SimdLanesMatchTheScalarPath) {
         ys[l] = l % 2 == 0 ? stalled_state() : triaxial_beyond_bound();
         ds[l] = l % 2 == 0 ? stalled_increment() : axial_compression(1e-5);
     }
-    YB yb;
-    Sym<Batch> db;
-    for (int k = 0; k < Sanisand::n_state; ++k) {
-        alignas(64) double buf[W];
-        for (std::size_t l = 0; l < W; ++l) {
-            buf[l] = ys[l][k];
-        }
-        yb[k] = Batch::load_aligned(buf);
-    }
-    for (int k = 0; k < 6; ++k) {
-        alignas(64) double buf[W];
-        for (std::size_t l = 0; l < W; ++l) {
-            buf[l] = ds[l][k];
-        }
-        db[k] = Batch::load_aligned(buf);
-    }
+    YB yb = pack_states(ys);
+    const Sym<Batch> db = pack_increments(ds);
     UpdateStats<Batch> sb;
     material_update<Sanisand, Batch>(P, s, {}, yb, db, sb);
     for (std::size_t l = 0; l < W; ++l) {
