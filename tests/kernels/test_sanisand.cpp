@@ -105,26 +105,10 @@ UpdateStats<double> drained_step(const SanisandParams& P, Y& y, double d, double
 }
 
 YB pack(const std::array<Y, W>& ys) {
-    YB yb;
-    for (int k = 0; k < Sanisand::n_state; ++k) {
-        alignas(64) double buf[W];
-        for (std::size_t l = 0; l < W; ++l) {
-            buf[l] = ys[l][k];
-        }
-        yb[k] = Batch::load_aligned(buf);
-    }
-    return yb;
+    return pack_states(ys);
 }
 Sym<Batch> pack(const std::array<Sym<double>, W>& ds) {
-    Sym<Batch> db;
-    for (int k = 0; k < 6; ++k) {
-        alignas(64) double buf[W];
-        for (std::size_t l = 0; l < W; ++l) {
-            buf[l] = ds[l][k];
-        }
-        db[k] = Batch::load_aligned(buf);
-    }
-    return db;
+    return pack_increments(ds);
 }
 Y lane_of(const YB& yb, std::size_t l) {
     Y y;
