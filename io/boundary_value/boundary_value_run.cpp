@@ -203,6 +203,10 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
             solver->restore(scene.stages[first_stage], resume->snapshot);
         }
         bool warned = false;
+        // The increment a stopped run resumes from (-1: no checkpoint on disk), and how long
+        // an increment may go on towards its checkpoint after a stop signal.
+        long checkpoint_increment = resume ? resume->run.increment : -1;
+        StopPatience increment_patience;
         out.ok = true;
         for (std::size_t k = first_stage; k < scene.stages.size() && out.ok; ++k) {
             const fem::Stage& stage = scene.stages[k];
@@ -250,6 +254,7 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
                         c.fields = fields->state(); // a resumed run continues the collections
                     }
                     write_boundary_value_checkpoint(dir, c);
+                    checkpoint_increment = increment;
                     ++out.checkpoints;
                     checkpoint_due.written();
                     out.checkpoint_seconds += since(t2);
@@ -266,12 +271,30 @@ BoundaryValueRunOutcome run_boundary_value_scene(const BoundaryValueScene& scene
             const auto on_iteration = [&](const fem::IncrementInfo& info) {
                 // Stopped inside an increment: without checkpoints the run ends at once; with them
                 // the increment goes on to its checkpoint (StopWatchdog bounds the wait).
+                // An increment that does not end within stop_patience of the signal is given
+                // up, so that the run still ends through its own path (summary, tangent
+                // checks, the costliest call) before the watchdog's grace runs out; it resumes
+                // from the last checkpoint.
                 if (!checkpoints.enabled()) {
                     throw_if_stopped(fmt::format("increment {} (during increment {}, Newton "
                                                  "iteration {})",
                                                  increment, increment + 1,
                                                  info.residuals.size() - 1),
                                      false);
+                } else if (increment_patience.exhausted()) {
+                    const int sig = stop_signal();
+                    throw RunInterrupted(
+                        sig, fmt::format(
+                                 "interrupted by {} after increment {} (increment {} did not end "
+                                 "within {} s of the signal: given up at Newton iteration {}){}",
+                                 signal_name(sig), increment, increment + 1,
+                                 increment_patience.patience().count() / 1000.0,
+                                 info.residuals.size() - 1,
+                                 checkpoint_increment >= 0
+                                     ? fmt::format(" (the last checkpoint is after increment {}: "
+                                                   "`ifsim resume DIR` goes on from it)",
+                                                   checkpoint_increment)
+                                     : std::string(" (no checkpoint written)")));
                 }
                 warn_initial_imbalance(*solver, line, warned);
                 if (iterations) {

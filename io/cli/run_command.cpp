@@ -47,9 +47,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// How long a step may take to end after a stop signal before the watchdog writes the summary.
-constexpr std::chrono::milliseconds stop_grace{10'000};
-
 // DIR/scene.toml: the scene as run (overrides applied, a mesh file by its absolute path), so
 // the folder says how to reproduce it.
 std::string write_scene_copy(const fs::path& dir, toml::table table, const RunOptions& opt,

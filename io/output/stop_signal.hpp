@@ -12,11 +12,19 @@
 #include <chrono>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
 
 namespace ifsim::io {
+
+// After a stop signal a run ends within stop_grace or the watchdog ends it (summary.json
+// written from what was known before the run). A boundary-value run with checkpoints lets
+// the increment under way go on to its checkpoint for at most stop_patience, then gives it
+// up and ends through its own path, resumable from the checkpoint before.
+inline constexpr std::chrono::milliseconds stop_grace{10'000};
+inline constexpr std::chrono::milliseconds stop_patience{5'000};
 
 // 0, or the number of the first stop signal received since StopSignals was installed.
 int stop_signal();
@@ -49,6 +57,30 @@ void throw_if_stopped(const std::string& done, bool resumable);
 inline int interrupted_exit_code(int signal) {
     return 128 + signal;
 }
+
+// Whether a run with checkpoints should give up the increment under way: true once a stop
+// signal has been pending for `patience` (counted from the first call that saw it), so that
+// the run ends through its own path well before the watchdog's grace runs out.
+class StopPatience {
+public:
+    using Clock = std::chrono::steady_clock;
+    explicit StopPatience(std::chrono::milliseconds patience = stop_patience)
+        : patience_(patience) {}
+    bool exhausted(Clock::time_point now = Clock::now()) {
+        if (stop_signal() == 0) {
+            return false;
+        }
+        if (!seen_) {
+            seen_ = now;
+        }
+        return now - *seen_ >= patience_;
+    }
+    std::chrono::milliseconds patience() const { return patience_; }
+
+private:
+    std::chrono::milliseconds patience_;
+    std::optional<Clock::time_point> seen_;
+};
 
 // Ends a run whose step does not return after a stop signal: after `grace` it calls `last_word`
 // (writes summary.json) and ends the process with interrupted_exit_code. The run's own ending

@@ -77,5 +77,24 @@ TEST(StopSignal, DisarmedWatchdogStaysSilent) {
     EXPECT_FALSE(spoke);
 }
 
+// An increment with checkpoints on may go on towards its checkpoint for the patience after
+// the signal, counted from the first check that saw it, and no longer; the patience ends
+// well inside the watchdog's grace, so the run's own ending still writes its files.
+TEST(StopSignal, PatienceRunsFromTheFirstCheckThatSawTheSignal) {
+    using namespace std::chrono_literals;
+    static_assert(stop_patience < stop_grace);
+    const StopSignals installed;
+    StopPatience patience(5000ms);
+    const auto t0 = StopPatience::Clock::time_point{} + 100s;
+    EXPECT_FALSE(patience.exhausted(t0)); // no signal: never
+    EXPECT_FALSE(patience.exhausted(t0 + 60s));
+    std::raise(SIGTERM);
+    const auto seen = t0 + 61s;
+    EXPECT_FALSE(patience.exhausted(seen));
+    EXPECT_FALSE(patience.exhausted(seen + 4999ms));
+    EXPECT_TRUE(patience.exhausted(seen + 5000ms));
+    EXPECT_TRUE(patience.exhausted(seen + 9s));
+}
+
 } // namespace
 } // namespace ifsim::io
