@@ -7,10 +7,13 @@ waits until ROWS rows of history are written, sends SIGNAL (default SIGTERM) and
 - history.csv (not .partial) exists and every line has as many fields as the header, with the
   row count summary.json gives;
 - with --resume: the stop wrote a checkpoint, `ifsim resume` finishes the run, and its
-  history.csv equals an uninterrupted run's byte for byte.
+  history.csv equals an uninterrupted run's byte for byte;
+- with --resume-set KEY=VALUE (a setting that must not change the results, e.g.
+  solver.check_tangent=true): the resume is given it, its scene.toml notes it, the files named
+  by --expect-file appear, and the history is still the uninterrupted run's.
 
 Usage: check_stop_signal.py IFSIM SCENE WORKDIR [--rows N] [--signal TERM|INT|HUP] [--resume]
-                            [--set KEY=VALUE]...
+                            [--set KEY=VALUE]... [--resume-set KEY=VALUE]... [--expect-file F]...
 Exit 0 when every check holds, 1 otherwise.
 """
 import argparse
@@ -41,6 +44,8 @@ def main():
     ap.add_argument("--signal", default="TERM", choices=["TERM", "INT", "HUP"])
     ap.add_argument("--resume", action="store_true")
     ap.add_argument("--set", action="append", default=[])
+    ap.add_argument("--resume-set", action="append", default=[])
+    ap.add_argument("--expect-file", action="append", default=[])
     a = ap.parse_args()
     sig = getattr(signal, "SIG" + a.signal)
     sets = [x for s in a.set for x in ("--set", s)]
@@ -94,7 +99,17 @@ def main():
         if not os.path.exists(os.path.join(run, "checkpoint")):
             failures.append("the stop wrote no checkpoint")
         else:
-            subprocess.run([a.ifsim, "resume", run, "-q"], check=True)
+            resume_sets = [x for s in a.resume_set for x in ("--set", s)]
+            subprocess.run([a.ifsim, "resume", run, "-q"] + resume_sets, check=True)
+            if a.resume_set:
+                with open(os.path.join(run, "scene.toml")) as f:
+                    copy = f.read()
+                if "# Resumed after increment" not in copy:
+                    failures.append("scene.toml does not note the resume's overrides")
+                failures += [f"scene.toml does not list --set {s}" for s in a.resume_set
+                             if f"#   --set {s}" not in copy]
+            failures += [f"no {f} after the resume" for f in a.expect_file
+                         if not os.path.exists(os.path.join(run, f))]
             whole = os.path.join(a.workdir, "whole")
             subprocess.run([a.ifsim, "run", a.scene, "--out", whole, "-q"] + sets, check=True)
             if not filecmp.cmp(os.path.join(whole, "history.csv"), history, shallow=False):

@@ -162,6 +162,13 @@ int run_cli(int argc, const char* const* argv) {
     resume_cmd->add_option("dir", resume_dir, "The run's output directory")->required();
     resume_cmd->add_option("--threads", resume.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 4096));
+    resume_cmd
+        ->add_option("--set", resume.sets,
+                     "Boundary-value runs: change how the equations are solved from the "
+                     "checkpoint on, KEY=VALUE (repeatable; solver.* and a pair's solution "
+                     "controls, e.g. contact.1.jacobian); noted in DIR/scene.toml")
+        ->type_name("KEY=VALUE")
+        ->allow_extra_args(false);
     add_checkpoint_options(resume_cmd, resume);
     add_iteration_log_flag(resume_cmd, resume);
     auto* resume_progress_flag = resume_cmd->add_flag(
@@ -170,7 +177,8 @@ int run_cli(int argc, const char* const* argv) {
         ->excludes(resume_progress_flag);
     resume_cmd->footer("The run goes on from its last checkpoint with the scene DIR/scene.toml "
                        "and the kernel path it started with; rows after the checkpoint are "
-                       "written again, so history.csv ends as the uninterrupted run's.");
+                       "written again, so history.csv ends as the uninterrupted run's (not "
+                       "with --set, which changes the run from the checkpoint on).");
 
     SweepOptions sweep;
     CLI::App* sweep_cmd = app.add_subcommand(

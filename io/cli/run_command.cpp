@@ -36,6 +36,7 @@
 #include "io/replay/element_replay.hpp"
 #include "io/replay/interface_replay.hpp"
 #include "io/scene/interface_formulation_reader.hpp"
+#include "io/scene/resume_overrides.hpp"
 #include "io/scene/scene_error.hpp"
 #include "io/scene/scene_toml.hpp"
 #include "io/scene/toml_describe.hpp"
@@ -68,6 +69,32 @@ std::string write_scene_copy(const fs::path& dir, toml::table table, const RunOp
         header += fmt::format("#   --fields-every {}\n", opt.fields_every);
     }
     header += "# (overrides applied below; rerun: ifsim run scene.toml --out DIR)\n\n";
+    std::ostringstream text;
+    text << header << table << "\n";
+    write_file_atomically(dir / "scene.toml", text.str());
+    return text.str();
+}
+
+// DIR/scene.toml of a run resumed with changed solution controls: the old copy's header, a
+// note of the changes and where they begin, then the scene with them applied. Its text is what
+// the resumed run's checkpoints hold, so a later resume continues with the same settings.
+std::string write_resumed_scene_copy(const fs::path& dir, const toml::table& table,
+                                     const std::string& old_text,
+                                     const std::vector<std::string>& sets, long increment) {
+    std::string header;
+    std::size_t at = 0;
+    while (at < old_text.size() && old_text[at] == '#') {
+        const std::size_t end = old_text.find('\n', at);
+        const std::size_t stop = end == std::string::npos ? old_text.size() : end + 1;
+        header.append(old_text, at, stop - at);
+        at = stop;
+    }
+    header += fmt::format("# Resumed after increment {} by ifsim {} ({}) with\n", increment,
+                          build_version(), build_revision());
+    for (const std::string& set : sets) {
+        header += fmt::format("#   --set {}\n", set);
+    }
+    header += "# (from there on not the uninterrupted run of the scene; applied below)\n\n";
     std::ostringstream text;
     text << header << table << "\n";
     write_file_atomically(dir / "scene.toml", text.str());
@@ -330,6 +357,18 @@ int run_command(const RunOptions& opt) {
                        (dir / "scene.toml").string());
             return exit_code::bad_input;
         }
+        // Changed solution controls from here on: refused before anything in DIR changes.
+        for (const std::string& set : opt.sets) {
+            std::string why = checkpoint->kind != "boundary-value"
+                                  ? fmt::format("--set {}: only a boundary-value run can be "
+                                                "resumed with changed settings",
+                                                set)
+                                  : resume_override_refusal(set);
+            if (!why.empty()) {
+                fmt::print(stderr, "ifsim: error: cannot resume {}: {}\n", dir.string(), why);
+                return exit_code::bad_input;
+            }
+        }
     }
 
     // Parse: the scene, the overrides, the kind's schema.
@@ -412,6 +451,17 @@ int run_command(const RunOptions& opt) {
                        (dir / checkpoint_file_name).string(), (dir / "scene.toml").string(),
                        why.empty() ? "it is of another scene kind" : why);
             return exit_code::bad_input;
+        }
+        if (!opt.sets.empty()) {
+            try {
+                scene_text = write_resumed_scene_copy(dir, table, scene_text, opt.sets,
+                                                      checkpoint->run().increment);
+            } catch (const std::exception& e) {
+                fmt::print(stderr, "ifsim: error: {}\n", e.what());
+                return exit_code::io_error;
+            }
+            summary.details["resumed_with"] = {{"after_increment", checkpoint->run().increment},
+                                               {"overrides", opt.sets}};
         }
         // The stopped run's summary.json ("failed", interrupted) no longer describes the
         // folder; the resumed run writes its own at its end.
