@@ -10,7 +10,8 @@ waits until ROWS rows of history are written, sends SIGNAL (default SIGTERM) and
   history.csv equals an uninterrupted run's byte for byte;
 - with --resume-set KEY=VALUE (a setting that must not change the results, e.g.
   solver.check_tangent=true): the resume is given it, its scene.toml notes it, the files named
-  by --expect-file appear, and the history is still the uninterrupted run's.
+  by --expect-file appear, and the history is still the uninterrupted run's; a resume with a
+  key the state was made with (mesh.file) is refused with exit 2 and leaves DIR as it was.
 
 Usage: check_stop_signal.py IFSIM SCENE WORKDIR [--rows N] [--signal TERM|INT|HUP] [--resume]
                             [--set KEY=VALUE]... [--resume-set KEY=VALUE]... [--expect-file F]...
@@ -100,6 +101,18 @@ def main():
             failures.append("the stop wrote no checkpoint")
         else:
             resume_sets = [x for s in a.resume_set for x in ("--set", s)]
+            if a.resume_set:
+                # A key the checkpoint's state was made with is refused, and DIR stays as it was.
+                kept = {f: open(os.path.join(run, f), "rb").read()
+                        for f in ("scene.toml", "checkpoint")}
+                refused = subprocess.run([a.ifsim, "resume", run, "-q", "--set",
+                                          'mesh.file="other.msh"'] + resume_sets,
+                                         capture_output=True, text=True)
+                if refused.returncode != 2 or "mesh.file" not in refused.stderr:
+                    failures.append(f"resume --set mesh.file: exit {refused.returncode}, "
+                                    f"expected 2 naming the key ({refused.stderr.strip()!r})")
+                failures += [f"{f} changed by the refused resume" for f, b in kept.items()
+                             if open(os.path.join(run, f), "rb").read() != b]
             subprocess.run([a.ifsim, "resume", run, "-q"] + resume_sets, check=True)
             if a.resume_set:
                 with open(os.path.join(run, "scene.toml")) as f:
