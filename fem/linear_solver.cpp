@@ -2,6 +2,7 @@
 
 #include "fem/blas_binding.hpp"
 #include "fem/krylov_gmres.hpp"
+#include "fem/lu_factors.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -35,6 +36,10 @@ struct LinearSolver::Impl {
     double info[UMFPACK_INFO];
     void* umf_symbolic = nullptr;
     void* umf_numeric = nullptr;
+    // UMFPACK's factors copied out for GMRES's preconditioner solves, on the first such solve
+    // after a factorisation (a held factorisation used only for its direct solve is not copied).
+    LuFactors lu;
+    bool lu_tried = false;
 
     klu_common common;
     klu_symbolic* klu_sym = nullptr;
@@ -57,6 +62,8 @@ struct LinearSolver::Impl {
         if (umf_numeric) {
             umfpack_di_free_numeric(&umf_numeric);
         }
+        lu.clear();
+        lu_tried = false;
         if (klu_num) {
             klu_free_numeric(&klu_num, &common);
         }
@@ -225,12 +232,18 @@ bool LinearSolver::solve_preconditioned(const Eigen::SparseMatrix<double>& A, co
             }
         }
     };
+    if (kind_ == LinearSolverKind::umfpack && !s.lu_tried) {
+        s.lu_tried = true;
+        s.lu.extract_umfpack(s.umf_numeric, n); // failed: UMFPACK's own solve below
+    }
     std::vector<double> rhs_copy(static_cast<std::size_t>(n));
     auto apply_m_inverse = [&](const auto& v, Eigen::VectorXd& z) {
         for (int i = 0; i < n; ++i) {
             rhs_copy[static_cast<std::size_t>(i)] = v[i];
         }
-        if (kind_ == LinearSolverKind::umfpack) {
+        if (!s.lu.empty()) {
+            s.lu.solve(rhs_copy.data(), z.data());
+        } else if (kind_ == LinearSolverKind::umfpack) {
             const int st =
                 umfpack_di_solve(UMFPACK_A, A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(),
                                  z.data(), rhs_copy.data(), s.umf_numeric, s.control_plain, s.info);
