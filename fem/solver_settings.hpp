@@ -123,7 +123,8 @@ struct SolverSettings {
     // steps. The tangent changes little between iterations, and a factorisation with the copy
     // of its factors costs about 30 preconditioner applications on the fine §6 mesh
     // (docs/fem.md, "Reused factorisations"); a failed GMRES is not allowed to cost more than
-    // that (20 steps left 2/3 of its failures 1-5 steps short of the tolerance there). GMRES stops at a relative residual of min(krylov_tolerance, r) of
+    // that (at 20 steps half of the failures there were projected within 7 more steps of the
+    // tolerance, two thirds within 11; docs/performance.md, "Preconditioner solves"). GMRES stops at a relative residual of min(krylov_tolerance, r) of
     // the linear system, r the Newton iteration's relative residual. Measured on the coarse
     // §6 run: 1e-10 reaches the direct solves' history; 1e-4 (an inexact-Newton forcing term)
     // stalled Newton at 1e-4 in gravity stage 2 - the penalty-stiff system amplifies the
