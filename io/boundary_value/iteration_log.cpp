@@ -18,7 +18,8 @@ constexpr const char* header =
     "increment,stage,step,t_begin,t_end,cut_depth,iteration,residual,line_search_steps,"
     "partition_solves,gathers,seconds,element_s,solve_s,contact_s,contact_evaluations,"
     "point_updates,lanes,subincrements,model_evaluations,model_substeps,"
-    "interface_newton_iterations,newton_fallbacks,contact_failures,relaxed_reruns\n";
+    "interface_newton_iterations,newton_fallbacks,contact_failures,relaxed_reruns,"
+    "factorisations,krylov_steps,krylov_fallbacks\n";
 
 } // namespace
 
@@ -61,6 +62,10 @@ IterationLog::Totals IterationLog::totals(const fem::StaticSolver& solver) const
     t.fallbacks = c.newton_fallbacks;
     t.failures = static_cast<double>(c.failed_evaluations);
     t.relaxed_reruns = static_cast<double>(c.relaxed_reruns);
+    const fem::LinearSolverCounters& lin = solver.counters().linear;
+    t.factorisations = static_cast<double>(lin.numeric_factorisations);
+    t.krylov_steps = static_cast<double>(lin.krylov_iterations);
+    t.krylov_fallbacks = static_cast<double>(lin.krylov_fallbacks);
     return t;
 }
 
@@ -70,7 +75,7 @@ void IterationLog::record(long increment, const fem::IncrementInfo& info,
     const Totals& l = last_;
     const std::string row = fmt::format(
         "{},{},{},{},{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{},{},{},{},{},{},{},"
-        "{}\n",
+        "{},{},{},{}\n",
         increment, info.stage, info.step, info.t_begin, info.t_end, info.cut_depth,
         info.residuals.size() - 1, info.residuals.back(), info.line_search_steps,
         info.partition_solves, info.gathers, t.seconds - l.seconds, t.element - l.element,
@@ -78,7 +83,8 @@ void IterationLog::record(long increment, const fem::IncrementInfo& info,
         t.point_updates - l.point_updates, t.lanes - l.lanes, t.subincrements - l.subincrements,
         t.model_evaluations - l.model_evaluations, t.model_substeps - l.model_substeps,
         t.newton - l.newton, t.fallbacks - l.fallbacks, t.failures - l.failures,
-        t.relaxed_reruns - l.relaxed_reruns);
+        t.relaxed_reruns - l.relaxed_reruns, t.factorisations - l.factorisations,
+        t.krylov_steps - l.krylov_steps, t.krylov_fallbacks - l.krylov_fallbacks);
     // Flushed at once: the log is read while a hard increment is still running.
     if (std::fputs(row.c_str(), file_) < 0 || std::fflush(file_) != 0) {
         throw std::runtime_error(fmt::format("cannot write {}", path_.string()));

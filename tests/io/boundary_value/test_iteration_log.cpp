@@ -59,10 +59,10 @@ double column_sum(const std::vector<std::map<std::string, double>>& rows, const 
 
 TEST(IterationLog, RowsAddUpToTheRunAndEndAtTheAcceptedResidual) {
     const fs::path dir = test::fresh_dir("iteration-log");
-    const auto r =
-        test::run_cli_captured({"run", "scenes/fe-simple-shear-cnl-2d.toml", "--out", dir.string(),
-                                "--threads", "1", "--iteration-log", "--set", "stage.2.steps=5",
-                                "--set", "stage.2.displacement.1.change=0.00015"});
+    const auto r = test::run_cli_captured(
+        {"run", "scenes/fe-simple-shear-cnl-2d.toml", "--out", dir.string(), "--threads", "1",
+         "--iteration-log", "--set", "stage.2.steps=5", "--set",
+         "stage.2.displacement.1.change=0.00015", "--set", "solver.reuse_factorisation=true"});
     ASSERT_EQ(r.code, 0) << r.err;
     const auto rows = read_log(dir);
     const test::History h = test::read_history(dir);
@@ -79,6 +79,11 @@ TEST(IterationLog, RowsAddUpToTheRunAndEndAtTheAcceptedResidual) {
                      c["contact_constitutive_evaluations"].get<double>());
     EXPECT_DOUBLE_EQ(column_sum(rows, "model_substeps"), c["contact_model_substeps"].get<double>());
     EXPECT_GT(column_sum(rows, "interface_newton_iterations"), 0.0);
+    EXPECT_DOUBLE_EQ(column_sum(rows, "factorisations"), c["linear_factorisations"].get<double>());
+    EXPECT_DOUBLE_EQ(column_sum(rows, "krylov_steps"), c["linear_krylov_iterations"].get<double>());
+    EXPECT_DOUBLE_EQ(column_sum(rows, "krylov_fallbacks"),
+                     c["linear_krylov_fallbacks"].get<double>());
+    EXPECT_GT(column_sum(rows, "krylov_steps"), 0.0); // the held factorisations were used
     // Seconds are written to 1e-4 s: each row rounds by at most 5e-5 s.
     EXPECT_LE(column_sum(rows, "contact_s"),
               s["timing"]["phases"]["contact_kernels"].get<double>() +
