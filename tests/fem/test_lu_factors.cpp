@@ -33,6 +33,33 @@ Eigen::SparseMatrix<double> zero_diagonal_matrix(int n) {
     return A;
 }
 
+// UMFPACK's factorisation of A with one control entry set, freed at the end of the scope.
+struct Umfpack {
+    void* symbolic = nullptr;
+    void* numeric = nullptr;
+    bool ok = false;
+    Umfpack(const Eigen::SparseMatrix<double>& A, int key, double value) {
+        double control[UMFPACK_CONTROL], info[UMFPACK_INFO];
+        umfpack_di_defaults(control);
+        control[key] = value;
+        const int n = static_cast<int>(A.rows());
+        ok = umfpack_di_symbolic(n, n, A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(),
+                                 &symbolic, control, info) == UMFPACK_OK &&
+             umfpack_di_numeric(A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(), symbolic,
+                                &numeric, control, info) == UMFPACK_OK;
+    }
+    ~Umfpack() {
+        if (numeric) {
+            umfpack_di_free_numeric(&numeric);
+        }
+        if (symbolic) {
+            umfpack_di_free_symbolic(&symbolic);
+        }
+    }
+    Umfpack(const Umfpack&) = delete;
+    Umfpack& operator=(const Umfpack&) = delete;
+};
+
 } // namespace
 
 TEST(LuFactors, CopiedFactorsSolveLikeADenseLuUnderEveryScaling) {
@@ -46,19 +73,10 @@ TEST(LuFactors, CopiedFactorsSolveLikeADenseLuUnderEveryScaling) {
     ASSERT_LT((Eigen::MatrixXd(A) * ref - b).norm(), 1e-9 * b.norm()); // regular
     for (double scale :
          {double(UMFPACK_SCALE_SUM), double(UMFPACK_SCALE_MAX), double(UMFPACK_SCALE_NONE)}) {
-        double control[UMFPACK_CONTROL], info[UMFPACK_INFO];
-        umfpack_di_defaults(control);
-        control[UMFPACK_SCALE] = scale;
-        void* symbolic = nullptr;
-        void* numeric = nullptr;
-        ASSERT_EQ(umfpack_di_symbolic(n, n, A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(),
-                                      &symbolic, control, info),
-                  UMFPACK_OK);
-        ASSERT_EQ(umfpack_di_numeric(A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(), symbolic,
-                                     &numeric, control, info),
-                  UMFPACK_OK);
+        const Umfpack f(A, UMFPACK_SCALE, scale);
+        ASSERT_TRUE(f.ok);
         LuFactors lu;
-        ASSERT_TRUE(lu.extract_umfpack(numeric, n));
+        ASSERT_TRUE(lu.extract_umfpack(f.numeric, n));
         EXPECT_EQ(lu.size(), n);
         EXPECT_GE(lu.nonzeros(), A.nonZeros());
         Eigen::VectorXd x(n);
@@ -69,10 +87,8 @@ TEST(LuFactors, CopiedFactorsSolveLikeADenseLuUnderEveryScaling) {
         lu.solve(y.data(), y.data());
         EXPECT_EQ(y, x);
         // The wrong size is refused and leaves the object empty.
-        EXPECT_FALSE(lu.extract_umfpack(numeric, n + 1));
+        EXPECT_FALSE(lu.extract_umfpack(f.numeric, n + 1));
         EXPECT_TRUE(lu.empty());
-        umfpack_di_free_numeric(&numeric);
-        umfpack_di_free_symbolic(&symbolic);
     }
 }
 
@@ -106,20 +122,11 @@ Eigen::SparseMatrix<double> grid_matrix(int m) {
 TEST(LuFactors, TwoPivotSetsOnTwoThreadsGiveTheSerialSolveBitwise) {
     const Eigen::SparseMatrix<double> A = grid_matrix(40);
     const int n = static_cast<int>(A.rows());
-    double control[UMFPACK_CONTROL], info[UMFPACK_INFO];
-    umfpack_di_defaults(control);
-    control[UMFPACK_ORDERING] = UMFPACK_ORDERING_CHOLMOD; // as fem/linear_solver.cpp
-    void* symbolic = nullptr;
-    void* numeric = nullptr;
-    ASSERT_EQ(umfpack_di_symbolic(n, n, A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(),
-                                  &symbolic, control, info),
-              UMFPACK_OK);
-    ASSERT_EQ(umfpack_di_numeric(A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(), symbolic,
-                                 &numeric, control, info),
-              UMFPACK_OK);
+    const Umfpack f(A, UMFPACK_ORDERING, UMFPACK_ORDERING_CHOLMOD); // as fem/linear_solver.cpp
+    ASSERT_TRUE(f.ok);
     LuFactors serial, split;
-    ASSERT_TRUE(serial.extract_umfpack(numeric, n, false));
-    ASSERT_TRUE(split.extract_umfpack(numeric, n, true));
+    ASSERT_TRUE(serial.extract_umfpack(f.numeric, n, false));
+    ASSERT_TRUE(split.extract_umfpack(f.numeric, n, true));
     EXPECT_EQ(serial.serial_nonzeros(), serial.nonzeros());
     // The sets are found and are worth a task each: a two-thread solve does well under 90 %
     // of the serial work.
@@ -145,6 +152,4 @@ TEST(LuFactors, TwoPivotSetsOnTwoThreadsGiveTheSerialSolveBitwise) {
     }
     EXPECT_EQ(x_one, x_serial);
     EXPECT_LT((A * x_serial - b).norm(), 1e-12 * b.norm());
-    umfpack_di_free_numeric(&numeric);
-    umfpack_di_free_symbolic(&symbolic);
 }
