@@ -124,11 +124,11 @@ struct SolverSettings {
     // of its factors costs about 30 preconditioner applications on the fine §6 mesh
     // (docs/fem.md, "Reused factorisations"); a failed GMRES is not allowed to cost more than
     // that (at 20 steps half of the failures there were projected within 7 more steps of the
-    // tolerance, two thirds within 11; docs/performance.md, "Preconditioner solves"). GMRES stops at a relative residual of min(krylov_tolerance, r) of
-    // the linear system, r the Newton iteration's relative residual. Measured on the coarse
-    // §6 run: 1e-10 reaches the direct solves' history; 1e-4 (an inexact-Newton forcing term)
-    // stalled Newton at 1e-4 in gravity stage 2 - the penalty-stiff system amplifies the
-    // linear residual into the correction.
+    // tolerance, two thirds within 11; docs/performance.md, "Preconditioner solves"). GMRES stops
+    // at a relative residual of min(krylov_tolerance, r) of the linear system, r the Newton
+    // iteration's relative residual. Measured on the coarse §6 run: 1e-10 reaches the direct
+    // solves' history; 1e-4 (an inexact-Newton forcing term) stalled Newton at 1e-4 in gravity
+    // stage 2 - the penalty-stiff system amplifies the linear residual into the correction.
     bool reuse_factorisation = false;
     double krylov_tolerance = 1.0e-10;
     int krylov_max_iterations = 30;
