@@ -29,7 +29,8 @@ public:
     bool empty() const { return n_ == 0; }
 
     // x = A^-1 b with A the factorised matrix (x and b of length n; they may alias). Runs the
-    // two pivot sets as two TBB tasks (serially under a one-thread limit).
+    // two pivot sets as two TBB tasks (serially under a one-thread limit). Uses the object's
+    // workspace: one solve at a time per object.
     void solve(const double* b, double* x) const;
 
     int size() const { return n_; }
