@@ -327,17 +327,7 @@ ContactOptions base_contact(InterfaceFormulation f, const Options& o) {
 }
 
 const char* jacobian_name(ContactJacobian j) {
-    switch (j) {
-    case ContactJacobian::perturbation:
-        return "perturbation";
-    case ContactJacobian::full_perturbation:
-        return "full-perturbation";
-    case ContactJacobian::analytical:
-        return "analytical";
-    case ContactJacobian::central:
-        return "central";
-    }
-    return "?";
+    return contact_jacobian_names[static_cast<std::size_t>(j)].data();
 }
 
 std::string num(double v) {

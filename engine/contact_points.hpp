@@ -13,9 +13,9 @@
 //             slave displacements (ndim columns) then the master displacements (ndim columns),
 //             status and counters
 //
-// The perturbed evaluations of Eq. 37 are lanes of their own: a point expands into
-// L = 2 ndim + 1 lanes (base, slave +theta e_i, master +theta e_i) in a lane buffer of length
-// L * P that is allocated once and reused every increment.
+// The perturbed evaluations of Eq. 37 are lanes of their own: a point expands into L lanes
+// (engine/contact_update.hpp, ContactLaneBlocks) in a lane buffer of length L * P that is
+// allocated once and reused every increment.
 
 #include <cstddef>
 
@@ -80,7 +80,6 @@ public:
     std::size_t size() const { return n_; }
     std::size_t padded() const { return p_; }
     int ndim() const { return ndim_; }
-    int lanes_per_point(bool perturbed) const { return perturbed ? 2 * ndim_ + 1 : 1; }
 
     double* input(int k) { return inputs_.col(k); }
     const double* input(int k) const { return inputs_.col(k); }

@@ -1,13 +1,20 @@
 #pragma once
 // The batched update of contact points: every point runs Algorithm 1 for its base evaluation
-// and, for the Jacobian, for its perturbed evaluations (paper Eq. 37: 2 ndim + 1 evaluations,
-// theta = `perturbation`). The perturbed evaluations are lanes like the base ones: a point
+// and, for the Jacobian, for its perturbed evaluations (paper Eq. 37, theta = `perturbation`). The perturbed evaluations are lanes like the base ones: a point
 // expands into L lanes of a lane buffer; TBB runs chunks of points, xsimd runs across lanes,
 // packed into batches by expected work (engine/contact_lanes.hpp). Results are bitwise
 // independent of the thread count (fixed chunks, per-point results, reductions in point order).
 //
 // Jacobian schemes:
 //   perturbation       Eq. 37, forward differences of the whole Algorithm 1 (state not perturbed)
+//                      for every slave and master displacement: 2 ndim + 1 evaluations.
+//   perturbation-one-side  Eq. 37 on one side only: ndim + 1 evaluations. The traction of a
+//                      point depends on the two sides only through the gap (slave +, master -),
+//                      so the other side's columns are the perturbed side's negated (chain
+//                      rule). Not the default: forward and backward differences differ by up to
+//                      100 % at small shear increments, and the mix of both in `perturbation`
+//                      carried the coarse Stutz scene of paper §6 through gravity where this
+//                      one diverges (docs/interface.md).
 //   full-perturbation  Eqs. 39-40. They add the dependence of the contact stress t and the state
 //                      k that an evaluation starts from on the displacement. Here every
 //                      evaluation starts from the converged state of the last increment and
@@ -27,10 +34,12 @@
 //                      part of t_N (docs/interface.md).
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -46,12 +55,32 @@ enum class ContactJacobian : int {
     perturbation = 0,
     full_perturbation = 1,
     analytical = 2,
-    central = 3
+    central = 3,
+    perturbation_one_side = 4
 };
+
+// The scene names of ContactJacobian, indexed by its value.
+inline constexpr std::array<std::string_view, 5> contact_jacobian_names = {
+    "perturbation", "full-perturbation", "analytical", "central", "perturbation-one-side"};
+
+// The scheme of a scene name; false for an unknown name.
+inline bool contact_jacobian_from_name(std::string_view name, ContactJacobian& out) {
+    for (std::size_t k = 0; k < contact_jacobian_names.size(); ++k) {
+        if (contact_jacobian_names[k] == name) {
+            out = static_cast<ContactJacobian>(k);
+            return true;
+        }
+    }
+    return false;
+}
 
 struct ContactOptions {
     bool simd = true;
     std::size_t chunk_points = 32; // points per TBB task (rounded up to the lane width)
+    // A small point set is still split into at least this many tasks (down to one SIMD batch
+    // each), so that a refined 2D box of 16 points runs on two cores. The split depends on the
+    // point count only, never on the thread count.
+    std::size_t min_tasks = 8;
     InterfaceSettings interface;
     ContactJacobian jacobian = ContactJacobian::perturbation;
     double perturbation = 1.4901161193847656e-8; // theta = sqrt(machine epsilon), Eq. 38
@@ -84,12 +113,54 @@ inline std::string describe_interface_failure(double cause, double residual) {
                : fmt::format("{} ({} {:.3g})", interface_failure::describe(cause), label, residual);
 }
 
+// The lane blocks of one update: block 0 the base, then `perturbed` blocks along the local axes
+// (slave +theta e_a for a < ndim, then, with both sides, master +theta e_a), then with adaptive
+// sub-increments the base re-run on the perturbed lanes' discretisation.
+struct ContactLaneBlocks {
+    int perturbed = 0;
+    bool both_sides = false;
+    bool rerun = false;
+    int blocks = 1;
+    int ref = 0; // the reference of the differences: the re-run, or the base
+
+    ContactLaneBlocks(const ContactOptions& opt, int ndim) {
+        both_sides = opt.jacobian != ContactJacobian::perturbation_one_side;
+        perturbed = opt.jacobian == ContactJacobian::analytical ? 0
+                    : both_sides                                ? 2 * ndim
+                                                                : ndim;
+        rerun = perturbed > 0 && opt.interface.adaptive;
+        blocks = 1 + perturbed + (rerun ? 1 : 0);
+        ref = rerun ? blocks - 1 : 0;
+    }
+
+    // Block k: the local axis it perturbs and the sign of the gap change (slave moved along
+    // the axis: +, master moved: -); -1 for the base and the re-run. With one side, the normal
+    // is perturbed on the slave and the tangents on the master: the lanes whose columns the
+    // point-level interface test reads (engine/interface_points.hpp), so its runs are the same
+    // with either scheme.
+    int axis(int k, int ndim, double& sign) const {
+        sign = 0.0;
+        if (k == 0 || k > perturbed) {
+            return -1;
+        }
+        const bool slave = both_sides ? k <= ndim : k == 1;
+        sign = slave ? 1.0 : -1.0;
+        return k <= ndim ? k - 1 : k - 1 - ndim;
+    }
+};
+
+// The points per TBB task: `chunk_points`, or fewer for a small set so that it makes at least
+// `min_tasks` tasks; always a multiple of the lane width.
+inline std::size_t contact_chunk_points(std::size_t points, const ContactOptions& opt,
+                                        std::size_t lane_width) {
+    const std::size_t tasks = std::max<std::size_t>(opt.min_tasks, 1);
+    const std::size_t wanted = std::min(opt.chunk_points, (points + tasks - 1) / tasks);
+    return std::max<std::size_t>(1, (wanted + lane_width - 1) / lane_width) * lane_width;
+}
+
 // Batched contact update with Jacobian columns.
 //
-// Lane layout: block k of the lane buffer holds lanes [k P, (k+1) P): block 0 the base
-// evaluations, blocks 1 .. 2 ndim the perturbed ones (slave e_1..e_ndim, master e_1..e_ndim),
-// and with adaptive sub-increments one more block, the base re-run on the perturbed lanes'
-// discretisation. Each point's perturbed lanes (and that re-run) take exactly the number of equal
+// Lane layout: block k of the lane buffer holds lanes [k P, (k+1) P) (ContactLaneBlocks). Each point's perturbed lanes (and that re-run) take exactly the number of equal
 // sub-increments its base accepted, so the forward differences of Eq. 37 see no change of
 // discretisation, only the perturbation. The buffer is allocated once and reused.
 template <class M>
@@ -99,20 +170,18 @@ public:
 
     ContactReport update(ContactPoints<M>& cp, const typename M::Params& mp,
                          const ContactOptions& opt) {
-        const bool perturbed = opt.jacobian != ContactJacobian::analytical;
         const int ndim = cp.ndim();
-        const int n_pert = perturbed ? 2 * ndim : 0;
-        const bool rerun = perturbed && opt.interface.adaptive;
-        const int blocks = 1 + n_pert + (rerun ? 1 : 0);
-        const int ref = rerun ? blocks - 1 : 0;
+        const ContactLaneBlocks layout(opt, ndim);
+        const bool rerun = layout.rerun;
+        const int blocks = layout.blocks;
+        const int ref = layout.ref;
         const std::size_t P = cp.padded();
         const int n_cols = detail::lane_col::state + ContactPoints<M>::n_state_cols;
         if (lanes_.columns() != n_cols || lanes_.length() != P * blocks) {
             ColumnStore fresh(n_cols, P * blocks);
             lanes_.swap(fresh);
         }
-        const std::size_t chunk =
-            ((opt.chunk_points + simd::lanes - 1) / simd::lanes) * simd::lanes;
+        const std::size_t chunk = contact_chunk_points(cp.size(), opt, simd::lanes);
 
         if (order_.size() != P * blocks) {
             order_.assign(P * blocks, detail::LaneKey{});
@@ -148,7 +217,7 @@ public:
             for (std::size_t i = b; i < e; ++i) {
                 keys[i - b].lane = i;
             }
-            gather(cp, opt, P, 0, ndim, b, e);
+            gather(cp, opt, layout, P, 0, ndim, b, e);
             run(keys, m, opt.interface);
             std::size_t queued = 0;
             for (int k = 1; k < blocks; ++k) {
@@ -159,7 +228,7 @@ public:
                     }
                     keys[m + queued++].lane = k * P + i;
                 }
-                gather(cp, opt, P, k, ndim, b, e);
+                gather(cp, opt, layout, P, k, ndim, b, e);
             }
             run(keys + m, queued, lane_settings);
             for (std::size_t i = b; i < e; ++i) {
@@ -167,7 +236,7 @@ public:
                     copy_base_to_reference(P, ref, i);
                 }
             }
-            scatter(cp, mp, opt, P, blocks, ref, b, e);
+            scatter(cp, mp, opt, layout, P, b, e);
         });
 
         ContactReport rep;
@@ -215,25 +284,13 @@ private:
                          : opt.perturbation;
     }
 
-    // Lane block k: the local axis it perturbs and the sign of the gap change (slave moved
-    // along the axis: +, master moved: -); -1 for the base and the re-run.
-    static int block_axis(int k, int ndim, double& sign) {
-        sign = 0.0;
-        if (k == 0 || k > 2 * ndim) {
-            return -1;
-        }
-        const bool slave = k <= ndim;
-        sign = slave ? 1.0 : -1.0;
-        return slave ? k - 1 : k - 1 - ndim;
-    }
-
-    void gather(ContactPoints<M>& cp, const ContactOptions& opt, std::size_t P, int k, int ndim,
-                std::size_t b, std::size_t e) {
+    void gather(ContactPoints<M>& cp, const ContactOptions& opt, const ContactLaneBlocks& layout,
+                std::size_t P, int k, int ndim, std::size_t b, std::size_t e) {
         using namespace detail::lane_col;
         for (std::size_t i = b; i < e; ++i) {
             const std::size_t l = k * P + i;
             double sign = 0.0;
-            const int axis = block_axis(k, ndim, sign);
+            const int axis = layout.axis(k, ndim, sign);
             double local[3] = {0.0, 0.0, 0.0}; // gap change along n, t1, t2
             if (axis >= 0) {
                 local[axis] = sign * axis_theta(cp, opt, i, axis);
@@ -298,10 +355,12 @@ private:
     }
 
     void scatter(ContactPoints<M>& cp, const typename M::Params& mp, const ContactOptions& opt,
-                 std::size_t P, int blocks, int ref, std::size_t b, std::size_t e) {
+                 const ContactLaneBlocks& layout, std::size_t P, std::size_t b, std::size_t e) {
         using namespace detail::lane_col;
         const int ndim = cp.ndim();
-        const int n_pert = blocks > 1 ? 2 * ndim : 0;
+        const int n_pert = layout.perturbed;
+        const int blocks = layout.blocks;
+        const int ref = layout.ref;
         for (std::size_t i = b; i < e; ++i) {
             // The point's status is its base lane's. A perturbed lane that fails while the base
             // succeeded (e.g. a normal perturbation closing an open contact at t_N ~ 0) is
@@ -340,10 +399,11 @@ private:
                 for (int k = 1; k <= n_pert; ++k) {
                     const bool usable = ref_ok && lanes_.col(status)[k * P + i] > -0.5;
                     double sign = 0.0;
-                    const int axis = block_axis(k, ndim, sign);
+                    const int axis = layout.axis(k, ndim, sign);
                     const double th = axis_theta(cp, opt, i, axis);
+                    const int slot = sign > 0.0 ? axis : ndim + axis; // slave or master column
                     for (int comp = 0; comp < 3; ++comp) {
-                        local[comp][k - 1] = usable ? (lane_traction(k * P + i, comp) -
+                        local[comp][slot] = usable ? (lane_traction(k * P + i, comp) -
                                                        lane_traction(ref * P + i, comp)) /
                                                           th
                                                     : 0.0;
@@ -358,6 +418,17 @@ private:
                         const double d = 0.5 * (local[comp][a] - local[comp][ndim + a]);
                         local[comp][a] = d;
                         local[comp][ndim + a] = -d;
+                    }
+                }
+                for (int a = 0; !layout.both_sides && a < ndim; ++a) {
+                    // One side perturbed: the other side's column of the axis is its negative.
+                    const bool slave_run = a == 0;
+                    for (int comp = 0; comp < 3; ++comp) {
+                        if (slave_run) {
+                            local[comp][ndim + a] = -local[comp][a];
+                        } else {
+                            local[comp][a] = -local[comp][ndim + a];
+                        }
                     }
                 }
                 const int axes[3] = {contact_col::n, contact_col::t1, contact_col::t2};

@@ -267,8 +267,10 @@ int run_cli(int argc, const char* const* argv) {
                         "increment of a run); default: from the size the warm-up ended with");
     bench_cmd
         ->add_option("--jacobian", bench.jacobian,
-                     "Interface Jacobian: perturbation (Eq. 37) | central (Eq. 37's lanes as "
-                     "central differences) | full-perturbation (Eqs. 39-40) | analytical (Eq. B3)")
+                     "Interface Jacobian: perturbation (Eq. 37, 2 ndim + 1 lanes) | "
+                     "perturbation-one-side (Eq. 37 on one side, ndim + 1 lanes) | "
+                     "central (those lanes as central differences) | full-perturbation "
+                     "(Eqs. 39-40) | analytical (Eq. B3)")
         ->capture_default_str();
     bench_cmd
         ->add_option("--subincrement", bench.subincrement,

@@ -116,10 +116,7 @@ Totals time_contact(const typename M::Params& params, const KernelBenchOptions& 
     opt.interface.ndim = bench_ndim;
     opt.interface.shear_band_thickness = o.shear_band_thickness;
     opt.interface.adaptive = o.subincrement == "adaptive";
-    opt.jacobian = o.jacobian == "analytical"          ? ContactJacobian::analytical
-                   : o.jacobian == "full-perturbation" ? ContactJacobian::full_perturbation
-                   : o.jacobian == "central"           ? ContactJacobian::central
-                                                       : ContactJacobian::perturbation;
+    contact_jacobian_from_name(o.jacobian, opt.jacobian); // checked by the caller
     ContactEngine<M> engine;
     Totals t;
     engine.update(cp, params, opt); // warm-up, untimed
@@ -183,11 +180,11 @@ nlohmann::ordered_json run_interface_kernel_bench(const KernelBenchOptions& o) {
         throw std::invalid_argument(
             fmt::format("--formulation {}: expected none, novel, stutz or coulomb", o.formulation));
     }
-    if (o.jacobian != "perturbation" && o.jacobian != "full-perturbation" &&
-        o.jacobian != "central" && o.jacobian != "analytical") {
-        throw std::invalid_argument(fmt::format(
-            "--jacobian {}: expected perturbation, central, full-perturbation or analytical",
-            o.jacobian));
+    if (ContactJacobian j; !contact_jacobian_from_name(o.jacobian, j)) {
+        throw std::invalid_argument(
+            fmt::format("--jacobian {}: expected {}", o.jacobian,
+                        fmt::join(contact_jacobian_names.begin(), contact_jacobian_names.end(),
+                                  ", ")));
     }
     if (o.subincrement != "fixed" && o.subincrement != "adaptive") {
         throw std::invalid_argument(

@@ -40,9 +40,7 @@ void visit_options(ContactOptions& o, Visitor& v) {
     v.number("open_threshold", s.open_threshold, Bounds::non_negative());
     v.flag("clamp_band", s.clamp_band);
     v.number("jacobian_tolerance", s.jacobian_tolerance, Bounds{0.0, 1.0, false, true});
-    v.choice("jacobian", o.jacobian,
-             std::array<std::string_view, 4>{"perturbation", "full-perturbation", "analytical",
-                                             "central"});
+    v.choice("jacobian", o.jacobian, contact_jacobian_names);
     v.number("perturbation", o.perturbation, Bounds::open(0.0, 1.0));
     IntegrationSettings& m = s.model;
     v.choice("model_scheme", m.scheme, std::array<std::string_view, 2>{"heun", "rkf23"});

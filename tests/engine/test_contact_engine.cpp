@@ -282,9 +282,9 @@ TEST(ContactEngine, BandCollapseIsReportedWithThePoint) {
     EXPECT_EQ(cp.output(contact_col::status)[2], lane_status::ok);
 }
 
-// Lanes per point: Eq. 37 2 ndim + 1; with adaptive sub-increments one more (the base re-run on
-// the perturbed lanes' discretisation); Eqs. 39-40 its perturbed lanes once per fixed-point
-// iteration; Eq. B3 the base only.
+// Lanes per point: Eq. 37 (and central) 2 ndim + 1, on one side ndim + 1; with
+// adaptive sub-increments one more (the base re-run on the perturbed lanes' discretisation);
+// Eqs. 39-40 its perturbed lanes once per fixed-point iteration; Eq. B3 the base only.
 TEST(ContactEngine, LaneCountsOfTheJacobianSchemes) {
     const auto mp = l4c(0.9);
     for (const int ndim : {2, 3}) {
@@ -292,10 +292,17 @@ TEST(ContactEngine, LaneCountsOfTheJacobianSchemes) {
         fill_varied(cp, ndim, 7);
         ContactEngine<Hypoplasticity> engine;
         ContactOptions opt = fast_options(ndim);
-        const double n = 5.0, p = 2.0 * ndim;
+        const double n = 5.0, p = 2.0 * ndim, one = ndim;
         EXPECT_EQ(engine.update(cp, mp, opt).lanes, n * (p + 1.0));
         opt.interface.adaptive = true;
         EXPECT_EQ(engine.update(cp, mp, opt).lanes, n * (p + 2.0));
+        opt.interface.adaptive = false;
+        opt.jacobian = ContactJacobian::central;
+        EXPECT_EQ(engine.update(cp, mp, opt).lanes, n * (p + 1.0));
+        opt.jacobian = ContactJacobian::perturbation_one_side;
+        EXPECT_EQ(engine.update(cp, mp, opt).lanes, n * (one + 1.0));
+        opt.interface.adaptive = true;
+        EXPECT_EQ(engine.update(cp, mp, opt).lanes, n * (one + 2.0));
         opt.interface.adaptive = false;
         opt.jacobian = ContactJacobian::analytical;
         EXPECT_EQ(engine.update(cp, mp, opt).lanes, n);
@@ -303,6 +310,57 @@ TEST(ContactEngine, LaneCountsOfTheJacobianSchemes) {
         // Eqs. 39-40 reduce to Eq. 37 here (the start state does not depend on the increment).
         EXPECT_EQ(engine.update(cp, mp, opt).lanes, n * (p + 1.0));
     }
+}
+
+// Eq. 37 on one side: the normal perturbed on the slave, the tangents on the master. In the
+// global frame those columns are bitwise Eq. 37's per-side columns (the same lanes), the other
+// side's exactly their negatives; the per-side scheme's other columns (the opposite one-sided
+// differences) differ from them. At these small shear increments (a few theta) forward and
+// backward differences of the incrementally nonlinear models differ by up to 100 %: both are
+// one-sided derivatives of a response with a kink at dg = 0, so no closeness is asserted.
+TEST(ContactEngine, OneSidedPerturbationNegatesTheOtherSidesColumns) {
+    const auto mp = l4c(0.9);
+    const Frame global{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
+    for (const int ndim : {2, 3}) {
+        HPoints one_side(9, ndim), per_side(9, ndim);
+        fill_varied(one_side, ndim, 17);
+        fill_varied(per_side, ndim, 17);
+        for (std::size_t i = 0; i < 9; ++i) {
+            set_frame(one_side, i, global);
+            set_frame(per_side, i, global);
+        }
+        ContactOptions opt = fast_options(ndim);
+        ContactEngine<Hypoplasticity> engine;
+        ASSERT_TRUE(engine.update(per_side, mp, opt).ok());
+        opt.jacobian = ContactJacobian::perturbation_one_side;
+        ASSERT_TRUE(engine.update(one_side, mp, opt).ok());
+        double differ = 0.0;
+        for (std::size_t i = 0; i < 9; ++i) {
+            for (int comp = 0; comp < 3; ++comp) {
+                for (int d = 0; d < ndim; ++d) {
+                    const int run = d == 0 ? d : ndim + d;   // the perturbed side's column
+                    const int other = d == 0 ? ndim + d : d; // its negative
+                    EXPECT_EQ(one_side.jacobian(i, comp, run), per_side.jacobian(i, comp, run));
+                    EXPECT_EQ(one_side.jacobian(i, comp, other),
+                              -one_side.jacobian(i, comp, run));
+                    differ = std::max(differ, std::abs(one_side.jacobian(i, comp, other) -
+                                                       per_side.jacobian(i, comp, other)));
+                }
+            }
+        }
+        EXPECT_GT(differ, 0.0) << "the per-side scheme ran no other lanes";
+    }
+}
+
+// A small point set is split into several tasks (two cores share a refined 2D box of 16
+// points); a large one into chunks of chunk_points; always whole SIMD batches.
+TEST(ContactEngine, SmallPointSetsAreSplitIntoSeveralTasks) {
+    ContactOptions opt;
+    EXPECT_EQ(contact_chunk_points(16, opt, 4), 4u);
+    EXPECT_EQ(contact_chunk_points(64, opt, 4), 8u);
+    EXPECT_EQ(contact_chunk_points(5000, opt, 4), 32u);
+    EXPECT_EQ(contact_chunk_points(3, opt, 8), 8u);
+    EXPECT_EQ(contact_chunk_points(0, opt, 4), 4u);
 }
 
 // A base lane held to equal sub-increments (contact_col::forced, as a boundary-value pair

@@ -9,12 +9,11 @@
 // itself (the incrementally nonlinear models are not smooth at dg = 0), so the relative error is
 // of order theta / |dg|: measured 3e-4 .. 1e-3 in 2D, up to 6.8e-3 in 3D where one tangential
 // component is only ~1.2e-6 m (theta / 1.2e-6 = 1.2e-2). Tolerance 2e-2 (3x the largest
-// measurement). The slave and master columns of one direction are forward differences at
-// +theta and -theta of the same gap component, so their half difference is a central
-// difference: it must agree with the reference to O(theta^2) (measured <= 6e-5 with fixed
-// sub-increments, <= 2.7e-4 adaptive; tolerance 1e-3, still below Eq. 37's own truncation
-// error), which checks the engine's sign and frame conventions far more tightly than Eq. 37
-// alone can.
+// measurement). The engine's central scheme (the slave and master lanes of one direction at
+// +theta and -theta of the same gap component, their half difference) must agree with the
+// reference to O(theta^2) (measured <= 6e-5 with fixed sub-increments, <= 2.7e-4 adaptive;
+// tolerance 1e-3, still below Eq. 37's own truncation error), which checks the engine's sign
+// and frame conventions far more tightly than Eq. 37 alone can.
 //
 // Noise: the differences see every discontinuity of the update within theta = 1.5e-8 m. Two
 // were found with adaptive (few, large) sub-increments: the rate Newton Jacobian leaves a
