@@ -1,9 +1,10 @@
 #pragma once
 // The batched update of contact points: every point runs Algorithm 1 for its base evaluation
-// and, for the Jacobian, for its perturbed evaluations (paper Eq. 37, theta = `perturbation`). The perturbed evaluations are lanes like the base ones: a point
-// expands into L lanes of a lane buffer; TBB runs chunks of points, xsimd runs across lanes,
-// packed into batches by expected work (engine/contact_lanes.hpp). Results are bitwise
-// independent of the thread count (fixed chunks, per-point results, reductions in point order).
+// and, for the Jacobian, for its perturbed evaluations (paper Eq. 37, theta = `perturbation`). The
+// perturbed evaluations are lanes like the base ones: a point expands into L lanes of a lane
+// buffer; TBB runs chunks of points, xsimd runs across lanes, packed into batches by expected work
+// (engine/contact_lanes.hpp). Results are bitwise independent of the thread count (fixed chunks,
+// per-point results, reductions in point order).
 //
 // Jacobian schemes:
 //   perturbation       Eq. 37, forward differences of the whole Algorithm 1 (state not perturbed)
@@ -125,9 +126,7 @@ struct ContactLaneBlocks {
 
     ContactLaneBlocks(const ContactOptions& opt, int ndim) {
         both_sides = opt.jacobian != ContactJacobian::perturbation_one_side;
-        perturbed = opt.jacobian == ContactJacobian::analytical ? 0
-                    : both_sides                                ? 2 * ndim
-                                                                : ndim;
+        perturbed = opt.jacobian == ContactJacobian::analytical ? 0 : both_sides ? 2 * ndim : ndim;
         rerun = perturbed > 0 && opt.interface.adaptive;
         blocks = 1 + perturbed + (rerun ? 1 : 0);
         ref = rerun ? blocks - 1 : 0;
@@ -160,9 +159,10 @@ inline std::size_t contact_chunk_points(std::size_t points, const ContactOptions
 
 // Batched contact update with Jacobian columns.
 //
-// Lane layout: block k of the lane buffer holds lanes [k P, (k+1) P) (ContactLaneBlocks). Each point's perturbed lanes (and that re-run) take exactly the number of equal
-// sub-increments its base accepted, so the forward differences of Eq. 37 see no change of
-// discretisation, only the perturbation. The buffer is allocated once and reused.
+// Lane layout: block k of the lane buffer holds lanes [k P, (k+1) P) (ContactLaneBlocks). Each
+// point's perturbed lanes (and that re-run) take exactly the number of equal sub-increments its
+// base accepted, so the forward differences of Eq. 37 see no change of discretisation, only the
+// perturbation. The buffer is allocated once and reused.
 template <class M>
 class ContactEngine {
 public:
@@ -404,9 +404,9 @@ private:
                     const int slot = sign > 0.0 ? axis : ndim + axis; // slave or master column
                     for (int comp = 0; comp < 3; ++comp) {
                         local[comp][slot] = usable ? (lane_traction(k * P + i, comp) -
-                                                       lane_traction(ref * P + i, comp)) /
-                                                          th
-                                                    : 0.0;
+                                                      lane_traction(ref * P + i, comp)) /
+                                                         th
+                                                   : 0.0;
                     }
                 }
                 for (int a = 0; central && a < ndim; ++a) {

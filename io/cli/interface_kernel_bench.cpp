@@ -181,10 +181,9 @@ nlohmann::ordered_json run_interface_kernel_bench(const KernelBenchOptions& o) {
             fmt::format("--formulation {}: expected none, novel, stutz or coulomb", o.formulation));
     }
     if (ContactJacobian j; !contact_jacobian_from_name(o.jacobian, j)) {
-        throw std::invalid_argument(
-            fmt::format("--jacobian {}: expected {}", o.jacobian,
-                        fmt::join(contact_jacobian_names.begin(), contact_jacobian_names.end(),
-                                  ", ")));
+        throw std::invalid_argument(fmt::format(
+            "--jacobian {}: expected {}", o.jacobian,
+            fmt::join(contact_jacobian_names.begin(), contact_jacobian_names.end(), ", ")));
     }
     if (o.subincrement != "fixed" && o.subincrement != "adaptive") {
         throw std::invalid_argument(

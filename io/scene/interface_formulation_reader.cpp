@@ -63,9 +63,9 @@ void read_continuum(const TableReader& t, InterfaceFormulationSpec& spec) {
         t.number_or("work_newton_iterations", s.work_newton_iterations, Bounds::non_negative());
     s.work_model_substeps =
         t.number_or("work_model_substeps", s.work_model_substeps, Bounds::non_negative());
-    spec.jacobian = t.choice_or("jacobian", "perturbation",
-                                {"perturbation", "central", "full-perturbation", "analytical",
-                                 "perturbation-one-side"});
+    spec.jacobian = t.choice_or(
+        "jacobian", "perturbation",
+        {"perturbation", "central", "full-perturbation", "analytical", "perturbation-one-side"});
     contact_jacobian_from_name(spec.jacobian, c.jacobian);
     c.perturbation = t.number_or("perturbation", c.perturbation, Bounds::open(0.0, 1.0));
     s.open_threshold = t.number_or("open_threshold", s.open_threshold, Bounds::positive());

@@ -341,8 +341,7 @@ TEST(ContactEngine, OneSidedPerturbationNegatesTheOtherSidesColumns) {
                     const int run = d == 0 ? d : ndim + d;   // the perturbed side's column
                     const int other = d == 0 ? ndim + d : d; // its negative
                     EXPECT_EQ(one_side.jacobian(i, comp, run), per_side.jacobian(i, comp, run));
-                    EXPECT_EQ(one_side.jacobian(i, comp, other),
-                              -one_side.jacobian(i, comp, run));
+                    EXPECT_EQ(one_side.jacobian(i, comp, other), -one_side.jacobian(i, comp, run));
                     differ = std::max(differ, std::abs(one_side.jacobian(i, comp, other) -
                                                        per_side.jacobian(i, comp, other)));
                 }
