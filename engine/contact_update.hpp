@@ -115,8 +115,9 @@ inline std::string describe_interface_failure(double cause, double residual) {
 }
 
 // The lane blocks of one update: block 0 the base, then `perturbed` blocks along the local axes
-// (slave +theta e_a for a < ndim, then, with both sides, master +theta e_a), then with adaptive
-// sub-increments the base re-run on the perturbed lanes' discretisation.
+// (both sides: slave +theta e_a for every axis a, then master +theta e_a; one side: one block
+// per axis, the side given by axis()), then with adaptive sub-increments the base re-run on the
+// perturbed lanes' discretisation.
 struct ContactLaneBlocks {
     int perturbed = 0;
     bool both_sides = false;
@@ -422,7 +423,7 @@ private:
                 }
                 for (int a = 0; !layout.both_sides && a < ndim; ++a) {
                     // One side perturbed: the other side's column of the axis is its negative.
-                    const bool slave_run = a == 0;
+                    const bool slave_run = a == 0; // as ContactLaneBlocks::axis chose
                     for (int comp = 0; comp < 3; ++comp) {
                         if (slave_run) {
                             local[comp][ndim + a] = -local[comp][a];
