@@ -114,11 +114,10 @@ void run_lanes_scalar(const typename M::Params& mp, const InterfaceSettings& s, 
     }
 }
 
-// Orders lanes by their expected number of sub-increments (fixed and forced: exact; adaptive:
-// from the first sub-increment size), most first; ties in buffer order. The order changes no
-// result.
+// Each lane's expected number of sub-increments (fixed and forced: exact; adaptive: from the
+// first sub-increment size) into its key.
 template <class M>
-void order_by_work(const InterfaceSettings& s, const ColumnStore& lanes, LaneKey* keys,
+void estimate_work(const InterfaceSettings& s, const ColumnStore& lanes, LaneKey* keys,
                    std::size_t n) {
     for (std::size_t q = 0; q < n; ++q) {
         const std::size_t l = keys[q].lane;
@@ -126,9 +125,20 @@ void order_by_work(const InterfaceSettings& s, const ColumnStore& lanes, LaneKey
             interface_begin<M, double>(s, read_lane_state<M>(lanes, l), read_lane_input(lanes, l));
         keys[q].work = c.active ? 1.0 / c.h : 0.0;
     }
+}
+
+// Most work first; ties in buffer order. The order changes no result.
+inline void sort_by_work(LaneKey* keys, std::size_t n) {
     std::sort(keys, keys + n, [](const LaneKey& a, const LaneKey& b) {
         return a.work != b.work ? a.work > b.work : a.lane < b.lane;
     });
+}
+
+template <class M>
+void order_by_work(const InterfaceSettings& s, const ColumnStore& lanes, LaneKey* keys,
+                   std::size_t n) {
+    estimate_work<M>(s, lanes, keys, n);
+    sort_by_work(keys, n);
 }
 
 // Moves one lane (slot j) between a batch carry and a scalar carry, field by field.

@@ -79,8 +79,9 @@ struct ContactOptions {
     bool simd = true;
     std::size_t chunk_points = 32; // points per TBB task (rounded up to the lane width)
     // A small point set is still split into at least this many tasks (down to one SIMD batch
-    // each), so that a refined 2D box of 16 points runs on two cores. The split depends on the
-    // point count only, never on the thread count.
+    // each), its base lanes and its perturbed lanes in tasks of their own, so that a refined
+    // 2D box of 16 points runs on two cores. The split depends on the point count only, never on
+    // the thread count.
     std::size_t min_tasks = 8;
     InterfaceSettings interface;
     ContactJacobian jacobian = ContactJacobian::perturbation;
@@ -158,6 +159,17 @@ inline std::size_t contact_chunk_points(std::size_t points, const ContactOptions
     return std::max<std::size_t>(1, (wanted + lane_width - 1) / lane_width) * lane_width;
 }
 
+// The lanes per TBB task of the perturbed-lane queue: as many as `chunk_points` points carry
+// (`per_point` lanes each), or fewer so that a small queue makes at least `min_tasks` tasks;
+// always a multiple of the lane width.
+inline std::size_t contact_chunk_lanes(std::size_t lanes, const ContactOptions& opt,
+                                       std::size_t per_point, std::size_t lane_width) {
+    const std::size_t tasks = std::max<std::size_t>(opt.min_tasks, 1);
+    const std::size_t full = opt.chunk_points * std::max<std::size_t>(per_point, 1);
+    const std::size_t wanted = std::min(full, (lanes + tasks - 1) / tasks);
+    return std::max<std::size_t>(1, (wanted + lane_width - 1) / lane_width) * lane_width;
+}
+
 // Batched contact update with Jacobian columns.
 //
 // Lane layout: block k of the lane buffer holds lanes [k P, (k+1) P) (ContactLaneBlocks). Each
@@ -195,9 +207,8 @@ public:
             lane_settings.tolerance = opt.interface.jacobian_tolerance;
             lane_settings.newton_jacobian = NewtonJacobian::perturbation;
         }
-        auto run = [&](detail::LaneKey* keys, std::size_t n, const InterfaceSettings& s) {
+        auto execute = [&](const detail::LaneKey* keys, std::size_t n, const InterfaceSettings& s) {
             if (opt.simd) {
-                detail::order_by_work<M>(s, lanes_, keys, n);
                 detail::run_lanes_packed<M>(mp, s, lanes_, {keys, n});
             } else {
                 detail::run_lanes_scalar<M>(mp, s, lanes_, {keys, n});
@@ -209,29 +220,58 @@ public:
         // copied instead of run.
         const bool same_settings = !(opt.interface.jacobian_tolerance > 0.0);
         reference_copied_.assign(P, 0);
+        // 1. The base lanes of the whole set, ordered by their expected work so that lanes of
+        //    equal work share batches, run in tasks of `chunk` lanes. The perturbed lanes take
+        //    their sub-increment counts from them.
+        detail::LaneKey* base_keys = order_.data();
         for_chunks(P, chunk, [&](std::size_t b, std::size_t e) {
-            const std::size_t m = e - b;
-            // The chunk's lanes in order_[b blocks, e blocks): base lanes first (the perturbed
-            // ones take their sub-increment counts), then every perturbed lane of the chunk as
-            // one queue, so lanes of equal work from different blocks share batches.
-            detail::LaneKey* keys = order_.data() + b * blocks;
             for (std::size_t i = b; i < e; ++i) {
-                keys[i - b].lane = i;
+                base_keys[i].lane = i;
             }
             gather(cp, opt, layout, P, 0, ndim, b, e);
-            run(keys, m, opt.interface);
-            std::size_t queued = 0;
+            if (opt.simd) {
+                detail::estimate_work<M>(opt.interface, lanes_, base_keys + b, e - b);
+            }
+        });
+        if (opt.simd) {
+            detail::sort_by_work(base_keys, P);
+        }
+        for_chunks(P, chunk, [&](std::size_t b, std::size_t e) {
+            execute(base_keys + b, e - b, opt.interface);
+        });
+        // 2. Every perturbed lane (and re-run) of the set as one queue, ordered by work, in
+        //    tasks of lanes. Per chunk of points, a point whose lanes cost several times the
+        //    others' kept one core busy while the other waited (the refined 2D box:
+        //    docs/performance.md, "Small point sets on two cores").
+        for_chunks(P, chunk, [&](std::size_t b, std::size_t e) {
             for (int k = 1; k < blocks; ++k) {
-                for (std::size_t i = b; i < e; ++i) {
-                    if (k == ref && rerun && same_settings && base_is_reference(i)) {
-                        reference_copied_[i] = 1;
-                        continue;
-                    }
-                    keys[m + queued++].lane = k * P + i;
-                }
                 gather(cp, opt, layout, P, k, ndim, b, e);
             }
-            run(keys + m, queued, lane_settings);
+        });
+        detail::LaneKey* lane_keys = order_.data() + P;
+        std::size_t queued = 0;
+        for (int k = 1; k < blocks; ++k) {
+            for (std::size_t i = 0; i < P; ++i) {
+                if (k == ref && rerun && same_settings && base_is_reference(i)) {
+                    reference_copied_[i] = 1;
+                    continue;
+                }
+                lane_keys[queued++].lane = k * P + i;
+            }
+        }
+        const std::size_t lane_task =
+            contact_chunk_lanes(queued, opt, static_cast<std::size_t>(blocks - 1), simd::lanes);
+        if (opt.simd) {
+            for_chunks(queued, lane_task, [&](std::size_t b, std::size_t e) {
+                detail::estimate_work<M>(lane_settings, lanes_, lane_keys + b, e - b);
+            });
+            detail::sort_by_work(lane_keys, queued);
+        }
+        for_chunks(queued, lane_task, [&](std::size_t b, std::size_t e) {
+            execute(lane_keys + b, e - b, lane_settings);
+        });
+        // 3. The results back to the points.
+        for_chunks(P, chunk, [&](std::size_t b, std::size_t e) {
             for (std::size_t i = b; i < e; ++i) {
                 if (reference_copied_[i] != 0) {
                     copy_base_to_reference(P, ref, i);
@@ -518,7 +558,7 @@ private:
     }
 
     ColumnStore lanes_;
-    std::vector<detail::LaneKey> order_;          // lane order per chunk, reused like lanes_
+    std::vector<detail::LaneKey> order_;          // base keys, then the lane queue; reused
     std::vector<unsigned char> reference_copied_; // per point: reference lane copied, not run
 };
 

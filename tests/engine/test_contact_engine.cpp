@@ -360,6 +360,12 @@ TEST(ContactEngine, SmallPointSetsAreSplitIntoSeveralTasks) {
     EXPECT_EQ(contact_chunk_points(5000, opt, 4), 32u);
     EXPECT_EQ(contact_chunk_points(3, opt, 8), 8u);
     EXPECT_EQ(contact_chunk_points(0, opt, 4), 4u);
+    // The perturbed-lane queue: 16 points x 4 lanes of a 2D box make 8 tasks of 8 lanes; a
+    // large queue takes chunk_points points' worth of lanes per task.
+    EXPECT_EQ(contact_chunk_lanes(64, opt, 4, 4), 8u);
+    EXPECT_EQ(contact_chunk_lanes(64, opt, 4, 8), 8u);
+    EXPECT_EQ(contact_chunk_lanes(7 * 5000, opt, 7, 4), 7u * 32u);
+    EXPECT_EQ(contact_chunk_lanes(0, opt, 7, 4), 4u);
 }
 
 // A base lane held to equal sub-increments (contact_col::forced, as a boundary-value pair
