@@ -1,10 +1,10 @@
 #pragma once
 // The lanes of the contact engine's lane buffer run through Algorithm 1.
 //
-// Scalar path: lane by lane. SIMD path: the lanes of a chunk are ordered by the number of
-// sub-increments they are expected to take (order_by_work) and packed into batches in that
-// order, so the lanes of a batch finish together and go through their costly first
-// sub-increments together. Kept in buffer order, a batch of 8 lanes used only ~70% of its
+// Scalar path: lane by lane. SIMD path: the lanes of a task are ordered by the number of
+// sub-increments they are expected to take (estimate_work, sort_by_work) and packed into
+// batches in that order, so the lanes of a batch finish together and go through their costly
+// first sub-increments together. Kept in buffer order, a batch of 8 lanes used only ~70% of its
 // sub-increment iterations (the count follows |delta g_T|, and a batch waits for its slowest
 // lane); refilling a slot as soon as its lane finished fixed that but put lanes at different
 // stages side by side, and the model's substeps per evaluation (many more in the first
@@ -134,13 +134,6 @@ inline void sort_by_work(LaneKey* keys, std::size_t n) {
     });
 }
 
-template <class M>
-void order_by_work(const InterfaceSettings& s, const ColumnStore& lanes, LaneKey* keys,
-                   std::size_t n) {
-    estimate_work<M>(s, lanes, keys, n);
-    sort_by_work(keys, n);
-}
-
 // Moves one lane (slot j) between a batch carry and a scalar carry, field by field.
 struct LaneSlot {
     std::size_t j;
@@ -167,7 +160,7 @@ struct LaneSlot {
     }
 };
 
-// SIMD path: the lanes, ordered by order_by_work, run in batches of simd::lanes; a batch is
+// SIMD path: the lanes, ordered by sort_by_work, run in batches of simd::lanes; a batch is
 // loaded when all its lanes are done. Lanes without sub-increments to run do not take a slot.
 template <class M>
 void run_lanes_packed(const typename M::Params& mp, const InterfaceSettings& s, ColumnStore& lanes,
