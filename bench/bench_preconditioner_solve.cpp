@@ -97,7 +97,8 @@ void BM_UmfpackSolve(benchmark::State& state) {
     set_counters(state, f);
 }
 
-// range(3): threads (the two pivot sets run as two tasks; one thread runs them in turn).
+// range(3): threads (the two pivot sets run as two tasks; one thread runs them in turn);
+// range(4): 1 for the factors held in single precision, 0 for double.
 void BM_CopiedFactorsSolve(benchmark::State& state) {
     Factorised f(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)),
                  static_cast<int>(state.range(2)));
@@ -105,7 +106,9 @@ void BM_CopiedFactorsSolve(benchmark::State& state) {
     tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
                                 static_cast<std::size_t>(state.range(3)));
     ifsim::fem::LuFactors lu;
-    if (!lu.extract_umfpack(f.numeric, n)) {
+    const auto precision = state.range(4) ? ifsim::fem::LuPrecision::single_precision
+                                          : ifsim::fem::LuPrecision::double_precision;
+    if (!lu.extract_umfpack(f.numeric, n, true, precision)) {
         state.SkipWithError("copying the factors failed");
         return;
     }
@@ -119,6 +122,12 @@ void BM_CopiedFactorsSolve(benchmark::State& state) {
     state.counters["two_thread_share"] =
         static_cast<double>(lu.largest_set_nonzeros() + lu.serial_nonzeros()) /
         static_cast<double>(lu.nonzeros());
+    state.counters["entries_per_run"] =
+        static_cast<double>(lu.nonzeros() - n) / static_cast<double>(lu.runs());
+    // The relative residual of the solve: what single precision costs a preconditioner.
+    Eigen::VectorXd r = Eigen::Map<const Eigen::VectorXd>(b.data(), n);
+    r -= f.A * Eigen::Map<const Eigen::VectorXd>(x.data(), n);
+    state.counters["relative_residual"] = r.norm() / std::sqrt(static_cast<double>(n));
 }
 
 void BM_CopyFactors(benchmark::State& state) {
@@ -149,10 +158,14 @@ void BM_Factorise(benchmark::State& state) {
 #define IFSIM_SIZES Args({25, 6, 33})->Args({13, 6, 17})->Unit(benchmark::kMillisecond)
 BENCHMARK(BM_UmfpackSolve)->IFSIM_SIZES;
 BENCHMARK(BM_CopiedFactorsSolve)
-    ->Args({25, 6, 33, 1})
-    ->Args({25, 6, 33, 2})
-    ->Args({13, 6, 17, 1})
-    ->Args({13, 6, 17, 2})
+    ->Args({25, 6, 33, 1, 0})
+    ->Args({25, 6, 33, 2, 0})
+    ->Args({25, 6, 33, 1, 1})
+    ->Args({25, 6, 33, 2, 1})
+    ->Args({13, 6, 17, 1, 0})
+    ->Args({13, 6, 17, 2, 0})
+    ->Args({13, 6, 17, 1, 1})
+    ->Args({13, 6, 17, 2, 1})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CopyFactors)->IFSIM_SIZES;
 BENCHMARK(BM_Factorise)->IFSIM_SIZES;
@@ -175,13 +188,16 @@ public:
                 const auto it = seconds_.find(std::string(name) + tail + threads);
                 return it == seconds_.end() ? std::nan("") : it->second;
             };
-            const double one = get("BM_CopiedFactorsSolve", "/1");
+            const double one = get("BM_CopiedFactorsSolve", "/1/0");
             std::printf("grid %s: UMFPACK solve / copied-factor solve = %.2f; copied-factor "
-                        "solve, 1 thread / 2 threads = %.2f; a factorisation = %.1f "
-                        "copied-factor solves; the copy = %.1f\n",
+                        "solve, 1 thread / 2 threads = %.2f; double / single precision = %.2f "
+                        "(1 thread), %.2f (2 threads); a factorisation = %.1f copied-factor "
+                        "solves; the copy = %.1f\n",
                         size, get("BM_UmfpackSolve", "") / one,
-                        one / get("BM_CopiedFactorsSolve", "/2"), get("BM_Factorise", "") / one,
-                        get("BM_CopyFactors", "") / one);
+                        one / get("BM_CopiedFactorsSolve", "/2/0"),
+                        one / get("BM_CopiedFactorsSolve", "/1/1"),
+                        get("BM_CopiedFactorsSolve", "/2/0") / get("BM_CopiedFactorsSolve", "/2/1"),
+                        get("BM_Factorise", "") / one, get("BM_CopyFactors", "") / one);
         }
     }
 

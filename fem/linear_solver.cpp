@@ -2,7 +2,6 @@
 
 #include "fem/blas_binding.hpp"
 #include "fem/krylov_gmres.hpp"
-#include "fem/lu_factors.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -37,7 +36,9 @@ struct LinearSolver::Impl {
     void* umf_symbolic = nullptr;
     void* umf_numeric = nullptr;
     // UMFPACK's factors copied out for GMRES's preconditioner solves, on the first such solve
-    // after a factorisation (a held factorisation used only for its direct solve is not copied).
+    // after a factorisation (a held factorisation used only for its direct solve is not copied),
+    // by default in single precision: a preconditioner of an older tangent, applied in double
+    // arithmetic, and a solve streams fewer bytes (docs/performance.md, "Preconditioner solves").
     LuFactors lu;
     bool lu_tried = false;
 
@@ -81,7 +82,8 @@ struct LinearSolver::Impl {
     }
 };
 
-LinearSolver::LinearSolver(LinearSolverKind kind) : kind_(kind), impl_(std::make_unique<Impl>()) {}
+LinearSolver::LinearSolver(LinearSolverKind kind, LuPrecision precondition)
+    : kind_(kind), precondition_(precondition), impl_(std::make_unique<Impl>()) {}
 LinearSolver::~LinearSolver() = default;
 
 bool LinearSolver::factorise(const Eigen::SparseMatrix<double>& A, std::uint64_t pattern_id,
@@ -234,7 +236,10 @@ bool LinearSolver::solve_preconditioned(const Eigen::SparseMatrix<double>& A, co
     };
     if (kind_ == LinearSolverKind::umfpack && !s.lu_tried) {
         s.lu_tried = true;
-        s.lu.extract_umfpack(s.umf_numeric, n); // failed: UMFPACK's own solve below
+        // failed: UMFPACK's own solve below
+        s.lu.extract_umfpack(s.umf_numeric, n, true, precondition_);
+        counters_.copy_seconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
     std::vector<double> rhs_copy(static_cast<std::size_t>(n));
     auto apply_m_inverse = [&](const auto& v, Eigen::VectorXd& z) {

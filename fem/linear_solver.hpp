@@ -12,6 +12,8 @@
 
 #include <Eigen/SparseCore>
 
+#include "fem/lu_factors.hpp"
+
 namespace ifsim::fem {
 
 enum class LinearSolverKind { umfpack, klu };
@@ -29,13 +31,16 @@ struct LinearSolverCounters {
     double factor_flops = 0.0;
     double factor_seconds = 0.0; // wall time in the numeric factorisations
     double krylov_seconds = 0.0; // wall time in the preconditioned GMRES solves
+    double copy_seconds = 0.0;   // of it, copying the factors out (once per factorisation)
     long factor_nonzeros = 0;
     std::string factor_strategy;
 };
 
 class LinearSolver {
 public:
-    explicit LinearSolver(LinearSolverKind kind = LinearSolverKind::umfpack);
+    // precondition: the precision of the factors' copy that GMRES's preconditioner solves use.
+    explicit LinearSolver(LinearSolverKind kind = LinearSolverKind::umfpack,
+                          LuPrecision precondition = LuPrecision::single_precision);
     ~LinearSolver();
     LinearSolver(const LinearSolver&) = delete;
     LinearSolver& operator=(const LinearSolver&) = delete;
@@ -61,6 +66,7 @@ public:
 private:
     struct Impl;
     LinearSolverKind kind_;
+    LuPrecision precondition_;
     std::unique_ptr<Impl> impl_;
     LinearSolverCounters counters_;
 };

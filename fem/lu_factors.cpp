@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <tuple>
 
 #include <suitesparse/umfpack.h>
 #include <tbb/parallel_invoke.h>
@@ -40,41 +41,138 @@ struct Sets {
     }
 };
 
+// One factor in runs: `line` k (a row of L, a column of U) holds runs [line[k], line[k + 1]).
+struct Runs {
+    std::vector<int>* line;
+    std::vector<int>* first;
+    std::vector<int>* value;
+};
+
+// Cuts each line of a compressed factor (pointers p, indices i, values x, as UMFPACK returns
+// them: sorted, the diagonal last) into runs of consecutive indices, leaving the diagonal out,
+// and copies the values in line order to `out`.
+template <class Real>
+void build_runs(int n, const std::vector<int>& p, const std::vector<int>& idx,
+                const std::vector<double>& x, Runs runs, std::vector<Real>& out) {
+    runs.line->resize(static_cast<std::size_t>(n) + 1);
+    runs.first->clear();
+    runs.value->clear();
+    out.resize(idx.size() - static_cast<std::size_t>(n));
+    std::size_t o = 0;
+    for (int k = 0; k < n; ++k) {
+        (*runs.line)[static_cast<std::size_t>(k)] = static_cast<int>(runs.first->size());
+        const int end = p[static_cast<std::size_t>(k) + 1] - 1;
+        for (int q = p[static_cast<std::size_t>(k)]; q < end; ++q, ++o) {
+            const int i = idx[static_cast<std::size_t>(q)];
+            if (q == p[static_cast<std::size_t>(k)] ||
+                i != idx[static_cast<std::size_t>(q) - 1] + 1) {
+                runs.first->push_back(i);
+                runs.value->push_back(static_cast<int>(o));
+            }
+            out[o] = static_cast<Real>(x[static_cast<std::size_t>(q)]);
+        }
+    }
+    (*runs.line)[static_cast<std::size_t>(n)] = static_cast<int>(runs.first->size());
+    runs.value->push_back(static_cast<int>(o));
+}
+
+// sum_t v[t] z[t] over a run, in eight interleaved partial sums (a fixed order: the same bits
+// on every call) that the compiler keeps in vector registers.
+template <class Real>
+inline double run_dot(const Real* v, const double* z, int len) {
+    double s[8] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    int t = 0;
+    for (; t + 8 <= len; t += 8) {
+        for (int u = 0; u < 8; ++u) {
+            s[u] += static_cast<double>(v[t + u]) * z[t + u];
+        }
+    }
+    for (; t < len; ++t) {
+        s[0] += static_cast<double>(v[t]) * z[t];
+    }
+    return ((s[0] + s[4]) + (s[1] + s[5])) + ((s[2] + s[6]) + (s[3] + s[7]));
+}
+
+// z[t] -= v[t] w over a run.
+template <class Real>
+inline void run_axpy(const Real* v, double w, double* z, int len) {
+    for (int t = 0; t < len; ++t) {
+        z[t] -= static_cast<double>(v[t]) * w;
+    }
+}
+
 } // namespace
 
 void LuFactors::clear() {
     n_ = 0;
     split_ = 0;
-    for (auto* v : {&lp_, &lj_, &up_, &ui_, &p_, &q_, &sets_[0], &sets_[1]}) {
+    lval_count_ = uval_count_ = 0;
+    for (auto* v : {&lrow_, &lrun_first_, &lrun_value_, &ucol_, &urun_first_, &urun_value_, &p_,
+                    &q_, &sets_[0], &sets_[1]}) {
         v->clear();
     }
-    for (auto* v : {&lx_, &ux_, &row_scale_, &work_}) {
+    for (auto* v : {&lx_, &ux_, &udiag_, &row_scale_, &work_}) {
         v->clear();
     }
+    lx_s_.clear();
+    ux_s_.clear();
     set_nonzeros_ = {0, 0};
     serial_nonzeros_ = 0;
 }
 
-bool LuFactors::extract_umfpack(void* numeric, int n, bool two_sets) {
+bool LuFactors::extract_umfpack(void* numeric, int n, bool two_sets, LuPrecision precision) {
     clear();
     int lnz = 0, unz = 0, n_row = 0, n_col = 0, nz_udiag = 0;
     if (umfpack_di_get_lunz(&lnz, &unz, &n_row, &n_col, &nz_udiag, numeric) != UMFPACK_OK ||
         n_row != n || n_col != n || nz_udiag != n) {
         return false;
     }
-    lp_.resize(static_cast<std::size_t>(n) + 1);
-    lj_.resize(static_cast<std::size_t>(lnz));
-    lx_.resize(static_cast<std::size_t>(lnz));
-    up_.resize(static_cast<std::size_t>(n) + 1);
-    ui_.resize(static_cast<std::size_t>(unz));
-    ux_.resize(static_cast<std::size_t>(unz));
     p_.resize(static_cast<std::size_t>(n));
     q_.resize(static_cast<std::size_t>(n));
     row_scale_.resize(static_cast<std::size_t>(n));
+    udiag_.resize(static_cast<std::size_t>(n));
+    // L (with P and R) and U (with Q and U's diagonal) are copied out by two calls, side by
+    // side: UMFPACK does not modify the numeric object and gives each call its own workspace.
     int do_recip = 0;
-    if (umfpack_di_get_numeric(lp_.data(), lj_.data(), lx_.data(), up_.data(), ui_.data(),
-                               ux_.data(), p_.data(), q_.data(), nullptr, &do_recip,
-                               row_scale_.data(), numeric) != UMFPACK_OK) {
+    bool l_ok = false, u_ok = false;
+    tbb::parallel_invoke(
+        [&] {
+            scratch_.lp.resize(static_cast<std::size_t>(n) + 1);
+            scratch_.lj.resize(static_cast<std::size_t>(lnz));
+            scratch_.lx.resize(static_cast<std::size_t>(lnz));
+            l_ok =
+                umfpack_di_get_numeric(scratch_.lp.data(), scratch_.lj.data(), scratch_.lx.data(),
+                                       nullptr, nullptr, nullptr, p_.data(), nullptr, nullptr,
+                                       &do_recip, row_scale_.data(), numeric) == UMFPACK_OK;
+            if (!l_ok) {
+                return;
+            }
+            const Runs runs{&lrow_, &lrun_first_, &lrun_value_};
+            if (precision == LuPrecision::single_precision) {
+                build_runs(n, scratch_.lp, scratch_.lj, scratch_.lx, runs, lx_s_);
+            } else {
+                build_runs(n, scratch_.lp, scratch_.lj, scratch_.lx, runs, lx_);
+            }
+        },
+        [&] {
+            scratch_.up.resize(static_cast<std::size_t>(n) + 1);
+            scratch_.ui.resize(static_cast<std::size_t>(unz));
+            scratch_.ux.resize(static_cast<std::size_t>(unz));
+            u_ok =
+                umfpack_di_get_numeric(nullptr, nullptr, nullptr, scratch_.up.data(),
+                                       scratch_.ui.data(), scratch_.ux.data(), nullptr, q_.data(),
+                                       udiag_.data(), nullptr, nullptr, numeric) == UMFPACK_OK;
+            if (!u_ok) {
+                return;
+            }
+            const Runs runs{&ucol_, &urun_first_, &urun_value_};
+            if (precision == LuPrecision::single_precision) {
+                build_runs(n, scratch_.up, scratch_.ui, scratch_.ux, runs, ux_s_);
+            } else {
+                build_runs(n, scratch_.up, scratch_.ui, scratch_.ux, runs, ux_);
+            }
+        });
+    if (!l_ok || !u_ok) {
         clear();
         return false;
     }
@@ -84,6 +182,9 @@ bool LuFactors::extract_umfpack(void* numeric, int n, bool two_sets) {
             r = 1.0 / r;
         }
     }
+    lval_count_ = precision == LuPrecision::single_precision ? lx_s_.size() : lx_.size();
+    uval_count_ = precision == LuPrecision::single_precision ? ux_s_.size() : ux_.size();
+    precision_ = precision;
     work_.resize(static_cast<std::size_t>(n));
     n_ = n;
     serial_nonzeros_ = nonzeros();
@@ -93,38 +194,78 @@ bool LuFactors::extract_umfpack(void* numeric, int n, bool two_sets) {
     return true;
 }
 
+long LuFactors::entries_of_pivot(int k) const {
+    const auto sk = static_cast<std::size_t>(k);
+    return static_cast<long>(lrun_value_[static_cast<std::size_t>(lrow_[sk + 1])] -
+                             lrun_value_[static_cast<std::size_t>(lrow_[sk])] +
+                             urun_value_[static_cast<std::size_t>(ucol_[sk + 1])] -
+                             urun_value_[static_cast<std::size_t>(ucol_[sk])]) +
+           1;
+}
+
+// Calls visit(first, length) for every run of pivots j < k that pivot k's row of L or column
+// of U refers to.
+template <class Visit>
+void LuFactors::for_each_run(int k, const Visit& visit) const {
+    const auto sk = static_cast<std::size_t>(k);
+    for (const auto& [line, first, value] :
+         {std::tie(lrow_, lrun_first_, lrun_value_), std::tie(ucol_, urun_first_, urun_value_)}) {
+        for (int r = line[sk]; r < line[sk + 1]; ++r) {
+            const auto sr = static_cast<std::size_t>(r);
+            visit(first[sr], value[sr + 1] - value[sr]);
+        }
+    }
+}
+
 // Chooses the split that minimises the estimated two-thread cost max(larger set, half the
 // prefix) + rest, over the sets of the prefix linked by entries of L (row k, column j < k) or
 // U (row i < k, column k); then deals the prefix's sets out largest first to the lighter side.
+//
+// Pivot k linked to every pivot of a run [a, a + len) joins the same sets as the run chained
+// pivot to next pivot and k linked to a. A chain link between j and j + 1 is made once per
+// copy (`next_unchained` skips the made ones), so the sets cost one union per run, not one
+// per factor entry.
 void LuFactors::find_two_sets() {
     const int n = n_;
-    auto entries = [&](int k) {
-        return static_cast<long>(
-            lp_[static_cast<std::size_t>(k) + 1] - lp_[static_cast<std::size_t>(k)] +
-            up_[static_cast<std::size_t>(k) + 1] - up_[static_cast<std::size_t>(k)]);
+    struct Linker {
+        Sets sets;
+        std::vector<int> next_unchained; // j, or a later pivot: j + 1 ... chained already
+        explicit Linker(int n) : sets(n), next_unchained(static_cast<std::size_t>(n)) {
+            std::iota(next_unchained.begin(), next_unchained.end(), 0);
+        }
+        int skip(int j) {
+            while (next_unchained[static_cast<std::size_t>(j)] != j) {
+                const int up = next_unchained[static_cast<std::size_t>(
+                    next_unchained[static_cast<std::size_t>(j)])];
+                next_unchained[static_cast<std::size_t>(j)] = up;
+                j = up;
+            }
+            return j;
+        }
+        void chain(int a, int last) {
+            for (int j = skip(a); j < last; j = skip(j)) {
+                sets.join(j, j + 1);
+                next_unchained[static_cast<std::size_t>(j)] = j + 1;
+            }
+        }
     };
-    auto link_to_prefix = [&](Sets& s, int k) {
-        long w = s.weight[static_cast<std::size_t>(s.root(k))];
-        for (int p = lp_[static_cast<std::size_t>(k)]; p < lp_[static_cast<std::size_t>(k) + 1] - 1;
-             ++p) {
-            w = s.join(k, lj_[static_cast<std::size_t>(p)]);
-        }
-        for (int p = up_[static_cast<std::size_t>(k)]; p < up_[static_cast<std::size_t>(k) + 1] - 1;
-             ++p) {
-            w = s.join(k, ui_[static_cast<std::size_t>(p)]);
-        }
-        return w;
+    auto link_to_prefix = [&](Linker& l, int k) {
+        for_each_run(k, [&](int a, int len) {
+            l.chain(a, a + len - 1);
+            l.sets.join(k, a);
+        });
+        return l.sets.weight[static_cast<std::size_t>(l.sets.root(k))];
     };
     const long total = nonzeros();
     long best_cost = total;
     int best_split = 0;
     {
-        Sets s(n);
+        Linker l(n);
         long prefix = 0, largest = 0;
         for (int k = 0; k < n; ++k) {
-            s.weight[static_cast<std::size_t>(k)] = entries(k);
-            prefix += entries(k);
-            largest = std::max(largest, link_to_prefix(s, k));
+            l.sets.weight[static_cast<std::size_t>(k)] = entries_of_pivot(k);
+            prefix += entries_of_pivot(k);
+            largest = std::max(largest, link_to_prefix(l, k));
             const long cost = std::max(largest, (prefix + 1) / 2) + (total - prefix);
             if (cost < best_cost) {
                 best_cost = cost;
@@ -136,10 +277,11 @@ void LuFactors::find_two_sets() {
     if (10 * best_cost > 9 * total) {
         return;
     }
-    Sets s(n);
+    Linker l(n);
+    Sets& s = l.sets;
     for (int k = 0; k < best_split; ++k) {
-        s.weight[static_cast<std::size_t>(k)] = entries(k);
-        link_to_prefix(s, k);
+        s.weight[static_cast<std::size_t>(k)] = entries_of_pivot(k);
+        link_to_prefix(l, k);
     }
     std::vector<int> roots;
     for (int k = 0; k < best_split; ++k) {
@@ -167,24 +309,66 @@ void LuFactors::find_two_sets() {
     serial_nonzeros_ = total - set_nonzeros_[0] - set_nonzeros_[1];
 }
 
-// L z = y, row k: the entries left of the unit diagonal (its last entry).
-void LuFactors::forward_row(int k, double* z) const {
+// L z = y, row k: its runs left of the unit diagonal.
+template <class Real>
+void LuFactors::forward_row(int k, const Real* lx, double* z) const {
     double s = z[k];
-    const int end = lp_[static_cast<std::size_t>(k) + 1] - 1;
-    for (int p = lp_[static_cast<std::size_t>(k)]; p < end; ++p) {
-        s -= lx_[static_cast<std::size_t>(p)] * z[lj_[static_cast<std::size_t>(p)]];
+    for (int r = lrow_[static_cast<std::size_t>(k)]; r < lrow_[static_cast<std::size_t>(k) + 1];
+         ++r) {
+        const int v = lrun_value_[static_cast<std::size_t>(r)];
+        s -= run_dot(lx + v, z + lrun_first_[static_cast<std::size_t>(r)],
+                     lrun_value_[static_cast<std::size_t>(r) + 1] - v);
     }
     z[k] = s;
 }
 
-// U w = z, column k (all later columns done): the diagonal is the column's last entry.
-void LuFactors::backward_column(int k, double* z) const {
-    const int begin = up_[static_cast<std::size_t>(k)];
-    const int diag = up_[static_cast<std::size_t>(k) + 1] - 1;
-    const double w = z[k] / ux_[static_cast<std::size_t>(diag)];
+// U w = z, column k (all later columns done).
+template <class Real>
+void LuFactors::backward_column(int k, const Real* ux, double* z) const {
+    const double w = z[k] / udiag_[static_cast<std::size_t>(k)];
     z[k] = w;
-    for (int p = begin; p < diag; ++p) {
-        z[ui_[static_cast<std::size_t>(p)]] -= ux_[static_cast<std::size_t>(p)] * w;
+    for (int r = ucol_[static_cast<std::size_t>(k)]; r < ucol_[static_cast<std::size_t>(k) + 1];
+         ++r) {
+        const int v = urun_value_[static_cast<std::size_t>(r)];
+        run_axpy(ux + v, w, z + urun_first_[static_cast<std::size_t>(r)],
+                 urun_value_[static_cast<std::size_t>(r) + 1] - v);
+    }
+}
+
+template <class Real>
+void LuFactors::solve_with(const Real* lx, const Real* ux, double* z) const {
+    const int n = n_;
+    if (split_ > 0) {
+        tbb::parallel_invoke(
+            [&] {
+                for (int k : sets_[0]) {
+                    forward_row(k, lx, z);
+                }
+            },
+            [&] {
+                for (int k : sets_[1]) {
+                    forward_row(k, lx, z);
+                }
+            });
+    }
+    for (int k = split_; k < n; ++k) {
+        forward_row(k, lx, z);
+    }
+    for (int k = n - 1; k >= split_; --k) {
+        backward_column(k, ux, z);
+    }
+    if (split_ > 0) {
+        tbb::parallel_invoke(
+            [&] {
+                for (auto it = sets_[0].rbegin(); it != sets_[0].rend(); ++it) {
+                    backward_column(*it, ux, z);
+                }
+            },
+            [&] {
+                for (auto it = sets_[1].rbegin(); it != sets_[1].rend(); ++it) {
+                    backward_column(*it, ux, z);
+                }
+            });
     }
 }
 
@@ -196,37 +380,10 @@ void LuFactors::solve(const double* b, double* x) const {
         const int i = p_[static_cast<std::size_t>(k)];
         z[k] = b[i] * row_scale_[static_cast<std::size_t>(i)];
     }
-    if (split_ > 0) {
-        tbb::parallel_invoke(
-            [&] {
-                for (int k : sets_[0]) {
-                    forward_row(k, z);
-                }
-            },
-            [&] {
-                for (int k : sets_[1]) {
-                    forward_row(k, z);
-                }
-            });
-    }
-    for (int k = split_; k < n; ++k) {
-        forward_row(k, z);
-    }
-    for (int k = n - 1; k >= split_; --k) {
-        backward_column(k, z);
-    }
-    if (split_ > 0) {
-        tbb::parallel_invoke(
-            [&] {
-                for (auto it = sets_[0].rbegin(); it != sets_[0].rend(); ++it) {
-                    backward_column(*it, z);
-                }
-            },
-            [&] {
-                for (auto it = sets_[1].rbegin(); it != sets_[1].rend(); ++it) {
-                    backward_column(*it, z);
-                }
-            });
+    if (precision_ == LuPrecision::single_precision) {
+        solve_with(lx_s_.data(), ux_s_.data(), z);
+    } else {
+        solve_with(lx_.data(), ux_.data(), z);
     }
     for (int k = 0; k < n; ++k) {
         x[q_[static_cast<std::size_t>(k)]] = z[k];

@@ -136,6 +136,10 @@ struct SolverSettings {
     // the held one (fem/static_solver.cpp, solve_tangent_system). A count, not a timing, so
     // the run's path does not depend on the machine's load.
     double krylov_factorisation_cost = 30.0;
+    // The precision the factors are copied in for GMRES's preconditioner solves (the direct
+    // solve after a factorisation is UMFPACK's own, in double). Single halves the values'
+    // bytes; the preconditioner is an older tangent's inverse anyway (docs/fem.md).
+    LuPrecision preconditioner_precision = LuPrecision::single_precision;
 };
 
 } // namespace ifsim::fem

@@ -16,7 +16,8 @@ namespace ifsim::fem {
 
 StaticSolver::StaticSolver(Mesh mesh, std::vector<ElementSetMaterial> materials,
                            SolverSettings settings)
-    : mesh_(std::move(mesh)), settings_(std::move(settings)), linear_(settings_.linear_solver) {
+    : mesh_(std::move(mesh)), settings_(std::move(settings)),
+      linear_(settings_.linear_solver, settings_.preconditioner_precision) {
     mesh_.validate();
     continuum_ =
         std::make_unique<ContinuumAssembly>(mesh_, std::move(materials), settings_, timers_.k0);

@@ -520,11 +520,14 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     {
         // Where the solve phase goes (seconds are wall time, so not among the counters).
         const fem::BlasBinding blas = fem::blas_binding();
-        d["linear_solve_work"] = {
-            {"factorise_s", c.linear.factor_seconds}, {"krylov_s", c.linear.krylov_seconds},
-            {"factor_flops", c.linear.factor_flops},  {"factor_nonzeros", c.linear.factor_nonzeros},
-            {"strategy", c.linear.factor_strategy},   {"blas", blas.dgemm_library},
-            {"blas_threads_pinned", blas.openblas}};
+        d["linear_solve_work"] = {{"factorise_s", c.linear.factor_seconds},
+                                  {"krylov_s", c.linear.krylov_seconds},
+                                  {"factor_copy_s", c.linear.copy_seconds},
+                                  {"factor_flops", c.linear.factor_flops},
+                                  {"factor_nonzeros", c.linear.factor_nonzeros},
+                                  {"strategy", c.linear.factor_strategy},
+                                  {"blas", blas.dgemm_library},
+                                  {"blas_threads_pinned", blas.openblas}};
     }
     d["tangent"] = scene.tangent;
     d["predictor"] = scene.predictor;

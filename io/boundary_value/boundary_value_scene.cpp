@@ -42,7 +42,8 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
                   "reuse_factorisation",
                   "krylov_tolerance",
                   "krylov_max_iterations",
-                  "krylov_factorisation_cost"});
+                  "krylov_factorisation_cost",
+                  "preconditioner_precision"});
     s.residual_tolerance =
         t.number_or("residual_tolerance", s.residual_tolerance, Bounds::open(0.0, 1.0));
     s.displacement_tolerance =
@@ -70,6 +71,10 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
         static_cast<int>(t.integer_or("krylov_max_iterations", s.krylov_max_iterations, 1, 1000));
     s.krylov_factorisation_cost = t.number_or("krylov_factorisation_cost",
                                               s.krylov_factorisation_cost, Bounds::non_negative());
+    s.preconditioner_precision =
+        t.choice_or("preconditioner_precision", "single", {"single", "double"}) == "double"
+            ? fem::LuPrecision::double_precision
+            : fem::LuPrecision::single_precision;
     scene.linear_solver = t.choice_or("linear_solver", "umfpack", {"umfpack", "klu"});
     s.linear_solver = scene.linear_solver == "umfpack" ? fem::LinearSolverKind::umfpack
                                                        : fem::LinearSolverKind::klu;

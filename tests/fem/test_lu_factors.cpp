@@ -1,8 +1,9 @@
 // The factors copied out of UMFPACK (fem/lu_factors.hpp) solve like the factorisation they came
 // from: against a dense LU on a matrix that forces off-diagonal pivots (zero diagonal, so the
-// row and column permutations differ), under each of UMFPACK's row scalings, and an empty
-// object after a failed copy; the two independent pivot sets of a nested-dissection ordering
-// run on two threads and give bitwise the serial solve.
+// row and column permutations differ), under each of UMFPACK's row scalings, in double and to
+// single precision's rounding in single, and an empty object after a failed copy; every factor
+// entry is held once, in runs of consecutive indices; the two independent pivot sets of a
+// nested-dissection ordering run on two threads and give bitwise the serial solve.
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -15,6 +16,7 @@
 #include "fem/lu_factors.hpp"
 
 using ifsim::fem::LuFactors;
+using ifsim::fem::LuPrecision;
 
 namespace {
 
@@ -75,20 +77,37 @@ TEST(LuFactors, CopiedFactorsSolveLikeADenseLuUnderEveryScaling) {
          {double(UMFPACK_SCALE_SUM), double(UMFPACK_SCALE_MAX), double(UMFPACK_SCALE_NONE)}) {
         const Umfpack f(A, UMFPACK_SCALE, scale);
         ASSERT_TRUE(f.ok);
-        LuFactors lu;
-        ASSERT_TRUE(lu.extract_umfpack(f.numeric, n));
-        EXPECT_EQ(lu.size(), n);
-        EXPECT_GE(lu.nonzeros(), A.nonZeros());
-        Eigen::VectorXd x(n);
-        lu.solve(b.data(), x.data());
-        EXPECT_LT((x - ref).norm(), 1e-12 * ref.norm()) << "scaling " << scale;
-        // In place, as the documentation allows.
-        Eigen::VectorXd y = b;
-        lu.solve(y.data(), y.data());
-        EXPECT_EQ(y, x);
-        // The wrong size is refused and leaves the object empty.
-        EXPECT_FALSE(lu.extract_umfpack(f.numeric, n + 1));
-        EXPECT_TRUE(lu.empty());
+        int lnz = 0, unz = 0, n_row = 0, n_col = 0, nz_udiag = 0;
+        ASSERT_EQ(umfpack_di_get_lunz(&lnz, &unz, &n_row, &n_col, &nz_udiag, f.numeric),
+                  UMFPACK_OK);
+        // Single precision: the values rounded to 6e-8, so the solve is off by that times the
+        // (scaled) matrix's condition number, small here.
+        for (const auto& [precision, tolerance] :
+             {std::pair{LuPrecision::double_precision, 1e-12},
+              std::pair{LuPrecision::single_precision, 1e-5}}) {
+            LuFactors lu;
+            ASSERT_TRUE(lu.extract_umfpack(f.numeric, n, true, precision));
+            EXPECT_EQ(lu.size(), n);
+            EXPECT_EQ(lu.precision(), precision);
+            // Every entry of L (its unit diagonal not held) and U once.
+            EXPECT_EQ(lu.nonzeros(), static_cast<long>(lnz - n + unz));
+            EXPECT_GT(lu.runs(), 0);
+            EXPECT_LE(lu.runs(), lu.nonzeros() - n);
+            Eigen::VectorXd x(n);
+            lu.solve(b.data(), x.data());
+            const double error = (x - ref).norm() / ref.norm();
+            EXPECT_LT(error, tolerance) << "scaling " << scale;
+            if (precision == LuPrecision::single_precision) {
+                EXPECT_GT(error, 1e-12) << "the values were not rounded to single precision";
+            }
+            // In place, as the documentation allows.
+            Eigen::VectorXd y = b;
+            lu.solve(y.data(), y.data());
+            EXPECT_EQ(y, x);
+            // The wrong size is refused and leaves the object empty.
+            EXPECT_FALSE(lu.extract_umfpack(f.numeric, n + 1));
+            EXPECT_TRUE(lu.empty());
+        }
     }
 }
 
@@ -152,4 +171,21 @@ TEST(LuFactors, TwoPivotSetsOnTwoThreadsGiveTheSerialSolveBitwise) {
     }
     EXPECT_EQ(x_one, x_serial);
     EXPECT_LT((A * x_serial - b).norm(), 1e-12 * b.norm());
+    // A nested-dissection factor is long runs of consecutive indices, not single entries.
+    EXPECT_GT(static_cast<double>(split.nonzeros() - n) / static_cast<double>(split.runs()), 4.0);
+
+    // In single precision, the same: the two sets on two threads give the serial solve's bits.
+    LuFactors serial_single, split_single;
+    ASSERT_TRUE(serial_single.extract_umfpack(f.numeric, n, false, LuPrecision::single_precision));
+    ASSERT_TRUE(split_single.extract_umfpack(f.numeric, n, true, LuPrecision::single_precision));
+    Eigen::VectorXd s_serial(n), s_two(n);
+    serial_single.solve(b.data(), s_serial.data());
+    {
+        tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
+        for (int repeat = 0; repeat < 20; ++repeat) {
+            split_single.solve(b.data(), s_two.data());
+            ASSERT_EQ(s_two, s_serial) << "repeat " << repeat;
+        }
+    }
+    EXPECT_LT((A * s_serial - b).norm(), 1e-5 * b.norm());
 }
