@@ -21,6 +21,22 @@ namespace {
 // soil model ~0.1-1, stiff structures next to soft soil ~1e-6..1e-9.
 constexpr double singular_rcond = 1.0e-13;
 
+// Adds the wall time of its scope to `seconds` (every return path of a lambda counted).
+class ScopedSeconds {
+public:
+    explicit ScopedSeconds(double& seconds)
+        : seconds_(seconds), from_(std::chrono::steady_clock::now()) {}
+    ~ScopedSeconds() {
+        seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - from_).count();
+    }
+    ScopedSeconds(const ScopedSeconds&) = delete;
+    ScopedSeconds& operator=(const ScopedSeconds&) = delete;
+
+private:
+    double& seconds_;
+    std::chrono::steady_clock::time_point from_;
+};
+
 } // namespace
 
 struct LinearSolver::Impl {
@@ -243,6 +259,7 @@ bool LinearSolver::solve_preconditioned(const Eigen::SparseMatrix<double>& A, co
     }
     std::vector<double> rhs_copy(static_cast<std::size_t>(n));
     auto apply_m_inverse = [&](const auto& v, Eigen::VectorXd& z) {
+        const ScopedSeconds clock(counters_.precondition_seconds);
         for (int i = 0; i < n; ++i) {
             rhs_copy[static_cast<std::size_t>(i)] = v[i];
         }

@@ -32,6 +32,7 @@ struct LinearSolverCounters {
     double factor_seconds = 0.0; // wall time in the numeric factorisations
     double krylov_seconds = 0.0; // wall time in the preconditioned GMRES solves
     double copy_seconds = 0.0;   // of it, copying the factors out (once per factorisation)
+    double precondition_seconds = 0.0; // of it, the preconditioner applications
     long factor_nonzeros = 0;
     std::string factor_strategy;
 };

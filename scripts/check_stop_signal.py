@@ -11,9 +11,12 @@ waits until ROWS rows of history are written, sends SIGNAL (default SIGTERM) and
 - with --resume-set KEY=VALUE (a setting that must not change the results, e.g.
   solver.check_tangent=true): the resume is given it, its scene.toml notes it, the files named
   by --expect-file appear, and the history is still the uninterrupted run's; a resume with a
-  key the state was made with (mesh.file) is refused with exit 2 and leaves DIR as it was.
+  key the state was made with (mesh.file) is refused with exit 2 and leaves DIR as it was;
+- with --twice: the signal is sent twice at once (as coreutils' `timeout` does, to the process
+  and then its group), and the run still ends as above: one stop.
 
 Usage: check_stop_signal.py IFSIM SCENE WORKDIR [--rows N] [--signal TERM|INT|HUP] [--resume]
+                            [--twice]
                             [--set KEY=VALUE]... [--resume-set KEY=VALUE]... [--expect-file F]...
 Exit 0 when every check holds, 1 otherwise.
 """
@@ -44,6 +47,9 @@ def main():
     ap.add_argument("--rows", type=int, default=20)
     ap.add_argument("--signal", default="TERM", choices=["TERM", "INT", "HUP"])
     ap.add_argument("--resume", action="store_true")
+    # The signal twice at once, as coreutils' `timeout` sends it (process, then process group):
+    # one stop, the same defined end.
+    ap.add_argument("--twice", action="store_true")
     ap.add_argument("--set", action="append", default=[])
     ap.add_argument("--resume-set", action="append", default=[])
     ap.add_argument("--expect-file", action="append", default=[])
@@ -65,6 +71,8 @@ def main():
         print("check_stop_signal: the run ended before the signal; use a longer scene")
         return 1
     proc.send_signal(sig)
+    if a.twice:
+        proc.send_signal(sig)
     _, err = proc.communicate(timeout=60)
     if proc.returncode != 128 + sig:
         failures.append(f"exit status {proc.returncode}, expected {128 + sig}")

@@ -1,7 +1,10 @@
 #include "io/output/stop_signal.hpp"
 
+#include <atomic>
 #include <csignal>
+#include <cstdint>
 #include <cstdlib>
+#include <ctime>
 
 #include <fmt/format.h>
 
@@ -10,17 +13,33 @@ namespace ifsim::io {
 namespace {
 
 volatile std::sig_atomic_t received = 0;
+// When the first signal arrived (CLOCK_MONOTONIC, ns; a lock-free atomic, safe in a handler).
+std::atomic<std::int64_t> received_at{0};
+static_assert(std::atomic<std::int64_t>::is_always_lock_free);
 constexpr int handled[] = {SIGTERM, SIGINT, SIGHUP};
 struct sigaction previous[std::size(handled)];
 
+std::int64_t monotonic_ns() {
+    timespec ts{};
+    clock_gettime(CLOCK_MONOTONIC, &ts); // async-signal-safe (POSIX)
+    return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
 extern "C" void on_stop_signal(int sig) {
+    const std::int64_t now = monotonic_ns();
     if (received == sig) {
+        // One stop delivered twice: coreutils' `timeout` signals the process and then its
+        // process group, as some batch systems do; both arrive within microseconds.
+        if (now - received_at.load() < second_signal_delay_ns) {
+            return;
+        }
         // The second time: the user means it. Default action, now.
         std::signal(sig, SIG_DFL);
         std::raise(sig);
         return;
     }
     if (received == 0) {
+        received_at.store(now);
         received = sig;
     }
 }

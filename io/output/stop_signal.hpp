@@ -6,7 +6,9 @@
 // StopSignals installs the handlers for the length of a run; the handler only records the
 // signal. The run loops ask stop_signal() after each step (point-level runs) or each Newton
 // iteration (boundary-value runs) and throw RunInterrupted. A second signal of the same kind
-// ends the process at once (the default action). A step that does not end soon after the
+// ends the process at once (the default action), unless it comes within
+// second_signal_delay_ns of the first: that is the same stop delivered twice (coreutils'
+// `timeout` signals the process, then its group). A step that does not end soon after the
 // signal is covered by StopWatchdog.
 
 #include <chrono>
@@ -25,6 +27,8 @@ namespace ifsim::io {
 // up and ends through its own path, resumable from the checkpoint before.
 inline constexpr std::chrono::milliseconds stop_grace{10'000};
 inline constexpr std::chrono::milliseconds stop_patience{5'000};
+// A repeat of the first stop signal sooner than this is ignored (one stop, delivered twice).
+inline constexpr long long second_signal_delay_ns = 500'000'000;
 
 // 0, or the number of the first stop signal received since StopSignals was installed.
 int stop_signal();

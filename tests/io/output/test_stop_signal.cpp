@@ -31,6 +31,31 @@ TEST(StopSignal, HandlerRecordsTheSignalAndTheCheckThrowsWithItsName) {
     EXPECT_EQ(interrupted_exit_code(SIGTERM), 143);
 }
 
+// coreutils' `timeout` sends SIGTERM to the process and then to its process group: the two
+// arrive together and are one stop, not the "second signal" that ends the process at once.
+TEST(StopSignal, OneStopDeliveredTwiceIsOneStop) {
+    const StopSignals installed;
+    std::raise(SIGTERM);
+    std::raise(SIGTERM); // without the delay rule: the default action, the test process ends
+    EXPECT_EQ(stop_signal(), SIGTERM);
+    EXPECT_THROW(throw_if_stopped("step 1 of 2", false), RunInterrupted);
+}
+
+// A repeat after the delay is a user who means it: the default action ends the process.
+TEST(StopSignalDeathTest, SecondSignalAfterTheDelayEndsTheProcess) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    EXPECT_EXIT(
+        {
+            const StopSignals installed;
+            std::raise(SIGINT);
+            std::this_thread::sleep_for(std::chrono::nanoseconds(second_signal_delay_ns) +
+                                        std::chrono::milliseconds(100));
+            std::raise(SIGINT);
+            std::exit(0); // not reached
+        },
+        testing::KilledBySignal(SIGINT), "");
+}
+
 TEST(StopSignal, NewInstallationForgetsAnEarlierRunsSignal) {
     {
         const StopSignals first;
