@@ -53,8 +53,7 @@ struct LinearSolver::Impl {
     void* umf_numeric = nullptr;
     // UMFPACK's factors copied out for GMRES's preconditioner solves, on the first such solve
     // after a factorisation (a held factorisation used only for its direct solve is not copied),
-    // by default in single precision: a preconditioner of an older tangent, applied in double
-    // arithmetic, and a solve streams fewer bytes (docs/performance.md, "Preconditioner solves").
+    // in the settings' precision (docs/performance.md, "Preconditioner solves").
     LuFactors lu;
     bool lu_tried = false;
 

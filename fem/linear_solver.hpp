@@ -29,9 +29,9 @@ struct LinearSolverCounters {
     // all of them, and the factors' entries (L + U) and the strategy of the last one (where the
     // solve phase's time goes: fill and flops, not the call count).
     double factor_flops = 0.0;
-    double factor_seconds = 0.0; // wall time in the numeric factorisations
-    double krylov_seconds = 0.0; // wall time in the preconditioned GMRES solves
-    double copy_seconds = 0.0;   // of it, copying the factors out (once per factorisation)
+    double factor_seconds = 0.0;       // wall time in the numeric factorisations
+    double krylov_seconds = 0.0;       // wall time in the preconditioned GMRES solves
+    double copy_seconds = 0.0;         // of it, copying the factors out (once per factorisation)
     double precondition_seconds = 0.0; // of it, the preconditioner applications
     long factor_nonzeros = 0;
     std::string factor_strategy;
@@ -41,7 +41,7 @@ class LinearSolver {
 public:
     // precondition: the precision of the factors' copy that GMRES's preconditioner solves use.
     explicit LinearSolver(LinearSolverKind kind = LinearSolverKind::umfpack,
-                          LuPrecision precondition = LuPrecision::single_precision);
+                          LuPrecision precondition = LuPrecision::double_precision);
     ~LinearSolver();
     LinearSolver(const LinearSolver&) = delete;
     LinearSolver& operator=(const LinearSolver&) = delete;

@@ -523,7 +523,7 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
         d["linear_solve_work"] = {{"factorise_s", c.linear.factor_seconds},
                                   {"krylov_s", c.linear.krylov_seconds},
                                   {"factor_copy_s", c.linear.copy_seconds},
-            {"precondition_s", c.linear.precondition_seconds},
+                                  {"precondition_s", c.linear.precondition_seconds},
                                   {"factor_flops", c.linear.factor_flops},
                                   {"factor_nonzeros", c.linear.factor_nonzeros},
                                   {"strategy", c.linear.factor_strategy},

@@ -72,9 +72,9 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
     s.krylov_factorisation_cost = t.number_or("krylov_factorisation_cost",
                                               s.krylov_factorisation_cost, Bounds::non_negative());
     s.preconditioner_precision =
-        t.choice_or("preconditioner_precision", "single", {"single", "double"}) == "double"
-            ? fem::LuPrecision::double_precision
-            : fem::LuPrecision::single_precision;
+        t.choice_or("preconditioner_precision", "double", {"double", "single"}) == "single"
+            ? fem::LuPrecision::single_precision
+            : fem::LuPrecision::double_precision;
     scene.linear_solver = t.choice_or("linear_solver", "umfpack", {"umfpack", "klu"});
     s.linear_solver = scene.linear_solver == "umfpack" ? fem::LinearSolverKind::umfpack
                                                        : fem::LinearSolverKind::klu;

@@ -140,12 +140,14 @@ namespace {
 
 // A hypoplastic block loaded by a plate from 50 to 120 kPa in 8 steps.
 StageRun plate_run(bool reuse,
-                   double factorisation_cost = SolverSettings{}.krylov_factorisation_cost) {
+                   double factorisation_cost = SolverSettings{}.krylov_factorisation_cost,
+                   LuPrecision precision = SolverSettings{}.preconditioner_precision) {
     Mesh m = rectangle_mesh({1.0, 1.0, 6, 6});
     distort(m, 0.1, 1.0 / 6.0);
     SolverSettings s;
     s.reuse_factorisation = reuse;
     s.krylov_factorisation_cost = factorisation_cost;
+    s.preconditioner_precision = precision;
     Stage st;
     st.steps = 8;
     st.displacements = {{"left", 0, 0.0}, {"right", 0, 0.0}, {"bottom", 1, 0.0}};
@@ -156,10 +158,19 @@ StageRun plate_run(bool reuse,
 
 } // namespace
 
-// The same converged state (to the Newton tolerance) with far fewer factorisations.
+// The same converged state (to the Newton tolerance) with far fewer factorisations, with the
+// preconditioner's factors in double and in single precision.
 TEST(ReusedFactorisation, HypoplasticRunReachesTheSameStateWithFewerFactorisations) {
     const StageRun direct = plate_run(false);
-    const StageRun reused = plate_run(true);
+    const StageRun single =
+        plate_run(true, SolverSettings{}.krylov_factorisation_cost, LuPrecision::single_precision);
+    ASSERT_TRUE(single.result.ok) << single.result.reason;
+    EXPECT_GT(single.counters.linear.krylov_solves, 0);
+    for (int i = 0; i < 6; ++i) {
+        EXPECT_NEAR(single.stress[i], direct.stress[i], 1e-7 * std::abs(direct.stress[1])) << i;
+    }
+    const StageRun reused =
+        plate_run(true, SolverSettings{}.krylov_factorisation_cost, LuPrecision::double_precision);
     ASSERT_TRUE(direct.result.ok) << direct.result.reason;
     ASSERT_TRUE(reused.result.ok) << reused.result.reason;
     const auto& d = direct.counters.linear;

@@ -291,7 +291,7 @@ TEST(BoundaryValueScene, BadInputNamesFileAndKey) {
              {"krylov_max_iterations = 0", "solver.krylov_max_iterations", "from 1 to 1000"},
              {"krylov_factorisation_cost = -1.0", "solver.krylov_factorisation_cost", ">= 0"},
              {"preconditioner_precision = \"half\"", "solver.preconditioner_precision",
-              "\"single\""},
+              "\"double\""},
              {"early_gather_residual = 1.0", "solver.early_gather_residual", "[0, 1)"},
              {"early_gather_residual = -1e-5", "solver.early_gather_residual", "[0, 1)"}}) {
         test::expect_boundary_value_error(
