@@ -135,41 +135,39 @@ bool LuFactors::extract_umfpack(void* numeric, int n, bool two_sets, LuPrecision
     // side: UMFPACK does not modify the numeric object and gives each call its own workspace.
     int do_recip = 0;
     bool l_ok = false, u_ok = false;
+    auto size_scratch = [n](std::vector<int>& ptr, std::vector<int>& idx, std::vector<double>& x,
+                            int nz) {
+        ptr.resize(static_cast<std::size_t>(n) + 1);
+        idx.resize(static_cast<std::size_t>(nz));
+        x.resize(static_cast<std::size_t>(nz));
+    };
+    auto cut = [&](const std::vector<int>& ptr, const std::vector<int>& idx,
+                   const std::vector<double>& x, Runs runs, std::vector<double>& values,
+                   std::vector<float>& values_single) {
+        if (precision == LuPrecision::single_precision) {
+            build_runs(n, ptr, idx, x, runs, values_single);
+        } else {
+            build_runs(n, ptr, idx, x, runs, values);
+        }
+    };
+    Scratch& w = scratch_;
     tbb::parallel_invoke(
         [&] {
-            scratch_.lp.resize(static_cast<std::size_t>(n) + 1);
-            scratch_.lj.resize(static_cast<std::size_t>(lnz));
-            scratch_.lx.resize(static_cast<std::size_t>(lnz));
-            l_ok =
-                umfpack_di_get_numeric(scratch_.lp.data(), scratch_.lj.data(), scratch_.lx.data(),
-                                       nullptr, nullptr, nullptr, p_.data(), nullptr, nullptr,
-                                       &do_recip, row_scale_.data(), numeric) == UMFPACK_OK;
-            if (!l_ok) {
-                return;
-            }
-            const Runs runs{&lrow_, &lrun_first_, &lrun_value_};
-            if (precision == LuPrecision::single_precision) {
-                build_runs(n, scratch_.lp, scratch_.lj, scratch_.lx, runs, lx_s_);
-            } else {
-                build_runs(n, scratch_.lp, scratch_.lj, scratch_.lx, runs, lx_);
+            size_scratch(w.lp, w.lj, w.lx, lnz);
+            l_ok = umfpack_di_get_numeric(w.lp.data(), w.lj.data(), w.lx.data(), nullptr, nullptr,
+                                          nullptr, p_.data(), nullptr, nullptr, &do_recip,
+                                          row_scale_.data(), numeric) == UMFPACK_OK;
+            if (l_ok) {
+                cut(w.lp, w.lj, w.lx, {&lrow_, &lrun_first_, &lrun_value_}, lx_, lx_s_);
             }
         },
         [&] {
-            scratch_.up.resize(static_cast<std::size_t>(n) + 1);
-            scratch_.ui.resize(static_cast<std::size_t>(unz));
-            scratch_.ux.resize(static_cast<std::size_t>(unz));
-            u_ok =
-                umfpack_di_get_numeric(nullptr, nullptr, nullptr, scratch_.up.data(),
-                                       scratch_.ui.data(), scratch_.ux.data(), nullptr, q_.data(),
-                                       udiag_.data(), nullptr, nullptr, numeric) == UMFPACK_OK;
-            if (!u_ok) {
-                return;
-            }
-            const Runs runs{&ucol_, &urun_first_, &urun_value_};
-            if (precision == LuPrecision::single_precision) {
-                build_runs(n, scratch_.up, scratch_.ui, scratch_.ux, runs, ux_s_);
-            } else {
-                build_runs(n, scratch_.up, scratch_.ui, scratch_.ux, runs, ux_);
+            size_scratch(w.up, w.ui, w.ux, unz);
+            u_ok = umfpack_di_get_numeric(nullptr, nullptr, nullptr, w.up.data(), w.ui.data(),
+                                          w.ux.data(), nullptr, q_.data(), udiag_.data(), nullptr,
+                                          nullptr, numeric) == UMFPACK_OK;
+            if (u_ok) {
+                cut(w.up, w.ui, w.ux, {&ucol_, &urun_first_, &urun_value_}, ux_, ux_s_);
             }
         });
     if (!l_ok || !u_ok) {

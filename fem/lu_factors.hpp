@@ -90,7 +90,8 @@ private:
     struct Scratch {
         std::vector<int> lp, lj, up, ui;
         std::vector<double> lx, ux;
-    } scratch_;
+    };
+    Scratch scratch_;
 };
 
 } // namespace ifsim::fem
