@@ -15,6 +15,7 @@
 #include <suitesparse/umfpack.h>
 #include <tbb/global_control.h>
 
+#include "fem/blas_binding.hpp"
 #include "fem/lu_factors.hpp"
 
 namespace {
@@ -64,6 +65,9 @@ struct Factorised {
     double control[UMFPACK_CONTROL];
     double info[UMFPACK_INFO];
     explicit Factorised(int nx, int ny, int nz) : A(hex_pattern_matrix(nx, ny, nz)) {
+        // OpenBLAS as ifsim runs it: one thread, kernels for this CPU (OPENBLAS_CORETYPE=Prescott
+        // measures the fallback Debian 12's OpenBLAS takes on CPUs newer than itself)
+        ifsim::fem::configure_blas();
         umfpack_di_defaults(control);
         control[UMFPACK_ORDERING] = UMFPACK_ORDERING_CHOLMOD; // as fem/linear_solver.cpp
         control[UMFPACK_IRSTEP] = 0;
@@ -81,6 +85,8 @@ struct Factorised {
 
 void set_counters(benchmark::State& state, const Factorised& f) {
     state.counters["equations"] = static_cast<double>(f.A.rows());
+    const std::string core = ifsim::fem::blas_binding().openblas_core;
+    state.SetLabel(core.empty() ? "blas: not OpenBLAS" : "OpenBLAS " + core);
     state.counters["factor_nonzeros"] = f.info[UMFPACK_LNZ] + f.info[UMFPACK_UNZ];
 }
 

@@ -63,7 +63,7 @@ struct LinearSolver::Impl {
     std::vector<double> rhs; // KLU solves in place
 
     Impl() {
-        pin_blas_threads();
+        configure_blas();
         umfpack_di_defaults(control);
         // AMD/COLAMD and METIS both tried, the ordering with less fill kept: on 3D hex meshes
         // METIS needs ~2.4x fewer flops per factorisation than the default AMD (measured on a

@@ -528,7 +528,12 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
                                   {"factor_nonzeros", c.linear.factor_nonzeros},
                                   {"strategy", c.linear.factor_strategy},
                                   {"blas", blas.dgemm_library},
-                                  {"blas_threads_pinned", blas.openblas}};
+                                  {"blas_threads_pinned", blas.openblas},
+                                  {"blas_core", blas.openblas_core}};
+        if (!blas.openblas_detected_core.empty()) {
+            // OpenBLAS's own choice, replaced because it was its fallback (fem/blas_binding.hpp)
+            d["linear_solve_work"]["blas_core_detected"] = blas.openblas_detected_core;
+        }
     }
     d["tangent"] = scene.tangent;
     d["predictor"] = scene.predictor;

@@ -5,6 +5,8 @@
 #include "fem/blas_binding.hpp"
 #include "fem/linear_solver.hpp"
 
+#include <cstdlib>
+
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCore>
@@ -33,6 +35,48 @@ TEST(BlasBinding, SolverPinsOpenBlasToOneThread) {
         GTEST_SKIP() << "the BLAS is not OpenBLAS";
     }
     EXPECT_EQ(ifsim::fem::blas_threads(), 1);
+}
+
+TEST(BlasBinding, OnlyOpenBlasFallbackIsReplacedByTheWidestSetTheCpuCarries) {
+    using ifsim::fem::CpuFeatures;
+    using ifsim::fem::replacement_core;
+    const CpuFeatures avx512{true, true, true}, avx2{false, true, true}, avx{false, false, true},
+        sse{};
+    EXPECT_EQ(replacement_core("Prescott", avx512), "SkylakeX");
+    EXPECT_EQ(replacement_core("PRESCOTT", avx2), "Haswell");
+    EXPECT_EQ(replacement_core("Prescott", avx), "Sandybridge");
+    EXPECT_EQ(replacement_core("Prescott", sse), ""); // a CPU that old: Prescott is right
+    // A set OpenBLAS recognised stays, even where a wider one would run.
+    EXPECT_EQ(replacement_core("Haswell", avx512), "");
+    EXPECT_EQ(replacement_core("Zen", avx512), "");
+    EXPECT_EQ(replacement_core("", avx512), ""); // another BLAS
+}
+
+TEST(BlasBinding, SolverRunsOpenBlasOnKernelsTheCpuCarries) {
+    // Debian 12's OpenBLAS falls back to its SSE3 kernels on CPUs newer than itself (an Emerald
+    // Rapids Xeon here: dgemm 4x slower). Once a solver exists, the set in use is not that
+    // fallback on any CPU with AVX, unless the user named one.
+    ifsim::fem::LinearSolver solver;
+    Eigen::SparseMatrix<double> a(2, 2);
+    a.insert(0, 0) = 2.0;
+    a.insert(1, 1) = 4.0;
+    a.makeCompressed();
+    std::string error;
+    ASSERT_TRUE(solver.factorise(a, 1, error)) << error;
+    const ifsim::fem::BlasBinding b = ifsim::fem::blas_binding();
+    if (!b.openblas) {
+        GTEST_SKIP() << "the BLAS is not OpenBLAS";
+    }
+    if (std::getenv("OPENBLAS_CORETYPE") != nullptr) {
+        GTEST_SKIP() << "OPENBLAS_CORETYPE names the kernel set";
+    }
+    ASSERT_FALSE(b.openblas_core.empty());
+    EXPECT_EQ(ifsim::fem::replacement_core(b.openblas_core, ifsim::fem::cpu_features()), "")
+        << "OpenBLAS runs its fallback set " << b.openblas_core << " on a CPU with wider vectors";
+    if (!b.openblas_detected_core.empty()) {
+        EXPECT_NE(b.openblas_detected_core, b.openblas_core);
+    }
+    EXPECT_EQ(ifsim::fem::blas_threads(), 1); // switching the set keeps the pinned thread count
 }
 
 } // namespace
