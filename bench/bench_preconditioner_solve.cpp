@@ -4,6 +4,7 @@
 // mesh (each node coupled to its 26 neighbours, 3 DOFs per node). The grid of the fine §6
 // mesh's soil (25 x 6 x 33 nodes, 14 850 equations) is the default size. The ratio printed at
 // the end is UMFPACK over the copied factors, per solve, from this one run.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -16,6 +17,7 @@
 #include <tbb/global_control.h>
 
 #include "fem/blas_binding.hpp"
+#include "fem/blocked_product.hpp"
 #include "fem/lu_factors.hpp"
 
 namespace {
@@ -160,6 +162,36 @@ void BM_Factorise(benchmark::State& state) {
     set_counters(state, f);
 }
 
+// GMRES's product with the tangent (fem/blocked_product.hpp), range(3) threads; the serial
+// column scatter it replaced at range(3) = 0.
+void BM_TangentProduct(benchmark::State& state) {
+    const Eigen::SparseMatrix<double> A =
+        hex_pattern_matrix(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)),
+                           static_cast<int>(state.range(2)));
+    const int n = static_cast<int>(A.rows());
+    const int threads = static_cast<int>(state.range(3));
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                              static_cast<std::size_t>(std::max(threads, 1)));
+    std::vector<double> v(static_cast<std::size_t>(n), 1.0), y(static_cast<std::size_t>(n));
+    ifsim::fem::BlockedProduct product;
+    product.prepare(A);
+    for (auto _ : state) {
+        if (threads == 0) {
+            std::fill(y.begin(), y.end(), 0.0);
+            for (int j = 0; j < n; ++j) {
+                for (int p = A.outerIndexPtr()[j]; p < A.outerIndexPtr()[j + 1]; ++p) {
+                    y[static_cast<std::size_t>(A.innerIndexPtr()[p])] +=
+                        A.valuePtr()[p] * v[static_cast<std::size_t>(j)];
+                }
+            }
+        } else {
+            product.multiply(v.data(), y.data());
+        }
+        benchmark::DoNotOptimize(y.data());
+    }
+    state.counters["entries"] = static_cast<double>(A.nonZeros());
+}
+
 // The fine §6 soil grid and a smaller one.
 #define IFSIM_SIZES Args({25, 6, 33})->Args({13, 6, 17})->Unit(benchmark::kMillisecond)
 BENCHMARK(BM_UmfpackSolve)->IFSIM_SIZES;
@@ -175,6 +207,11 @@ BENCHMARK(BM_CopiedFactorsSolve)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CopyFactors)->IFSIM_SIZES;
 BENCHMARK(BM_Factorise)->IFSIM_SIZES;
+BENCHMARK(BM_TangentProduct)
+    ->Args({25, 6, 33, 0})
+    ->Args({25, 6, 33, 1})
+    ->Args({25, 6, 33, 2})
+    ->Unit(benchmark::kMicrosecond);
 
 // Prints UMFPACK's solve over the copied factors' (one thread), the copied factors' one thread
 // over two, and a factorisation and the copy in one-thread copied-factor solves.
@@ -205,6 +242,13 @@ public:
                         get("BM_CopiedFactorsSolve", "/2/0") / get("BM_CopiedFactorsSolve", "/2/1"),
                         get("BM_Factorise", "") / one, get("BM_CopyFactors", "") / one);
         }
+        const auto product = [&](const char* threads) {
+            const auto it = seconds_.find(std::string("BM_TangentProduct/25/6/33/") + threads);
+            return it == seconds_.end() ? std::nan("") : it->second;
+        };
+        std::printf("tangent product, grid 25/6/33: serial scatter / blocks on 1 thread = %.2f; "
+                    "blocks, 1 thread / 2 threads = %.2f\n",
+                    product("0") / product("1"), product("1") / product("2"));
     }
 
 private:

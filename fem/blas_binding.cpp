@@ -17,7 +17,8 @@ std::string file_of(void* symbol) {
     return info.dli_fname;
 }
 
-template <class F> F openblas_function(const char* name) {
+template <class F>
+F openblas_function(const char* name) {
     return reinterpret_cast<F>(dlsym(RTLD_DEFAULT, name));
 }
 

@@ -12,7 +12,8 @@ struct BlasBinding {
     std::string libblas_provider; // the file whose dgemm_ libblas.so.3 provides ("" if not loaded)
     bool openblas = false;        // OpenBLAS: its thread count is pinned (configure_blas)
     std::string openblas_core;    // OpenBLAS's kernel set now ("" for another BLAS)
-    std::string openblas_detected_core; // the set OpenBLAS chose itself, if configure_blas replaced it
+    std::string
+        openblas_detected_core; // the set OpenBLAS chose itself, if configure_blas replaced it
 };
 
 BlasBinding blas_binding();
@@ -29,8 +30,8 @@ BlasBinding blas_binding();
 // newer than the library (Debian 12's 0.3.21 on an Intel family 6 model 207, Emerald Rapids)
 // falls back to the SSE3 "Prescott" set, whose dgemm ran 4x slower than the AVX-512 one there
 // (docs/performance.md, "OpenBLAS's kernel set"). When OpenBLAS reports that fallback on a CPU
-// with AVX2 or AVX-512, the set is chosen from the CPU's features instead (replacement_core), unless
-// OPENBLAS_CORETYPE names one: the user's choice stands.
+// with AVX2 or AVX-512, the set is chosen from the CPU's features instead (replacement_core),
+// unless OPENBLAS_CORETYPE names one: the user's choice stands.
 void configure_blas();
 // OpenBLAS's current thread count; -1 for another BLAS.
 int blas_threads();

@@ -1,6 +1,7 @@
 #include "fem/linear_solver.hpp"
 
 #include "fem/blas_binding.hpp"
+#include "fem/blocked_product.hpp"
 #include "fem/krylov_gmres.hpp"
 
 #include <algorithm>
@@ -61,6 +62,7 @@ struct LinearSolver::Impl {
     klu_symbolic* klu_sym = nullptr;
     klu_numeric* klu_num = nullptr;
     std::vector<double> rhs; // KLU solves in place
+    BlockedProduct product;  // GMRES's products with the current tangent
 
     Impl() {
         configure_blas();
@@ -236,18 +238,10 @@ bool LinearSolver::solve_preconditioned(const Eigen::SparseMatrix<double>& A, co
     ++counters_.krylov_solves;
     const auto start = std::chrono::steady_clock::now();
     const int n = s.n;
-    // y = A v over the compressed columns, in a fixed order.
+    // y = A v in column blocks, the same sums for any thread count (fem/blocked_product.hpp).
+    s.product.prepare(A);
     auto apply_a = [&](const auto& v, Eigen::VectorXd& y) {
-        y.setZero();
-        const int* outer = A.outerIndexPtr();
-        const int* inner = A.innerIndexPtr();
-        const double* val = A.valuePtr();
-        for (int j = 0; j < n; ++j) {
-            const double vj = v[j];
-            for (int p = outer[j]; p < outer[j + 1]; ++p) {
-                y[inner[p]] += val[p] * vj;
-            }
-        }
+        s.product.multiply(v.data(), y.data());
     };
     if (kind_ == LinearSolverKind::umfpack && !s.lu_tried) {
         s.lu_tried = true;
