@@ -13,6 +13,17 @@
 
 namespace {
 
+// A solver's first factorisation: configure_blas has run after it.
+bool factorise_once() {
+    ifsim::fem::LinearSolver solver;
+    Eigen::SparseMatrix<double> a(2, 2);
+    a.insert(0, 0) = 2.0;
+    a.insert(1, 1) = 4.0;
+    a.makeCompressed();
+    std::string error;
+    return solver.factorise(a, 1, error);
+}
+
 TEST(BlasBinding, DgemmComesFromTheLibblasAlternative) {
     const ifsim::fem::BlasBinding b = ifsim::fem::blas_binding();
     ASSERT_FALSE(b.dgemm_library.empty()) << "no dgemm_ in the process: UMFPACK needs a BLAS";
@@ -24,13 +35,7 @@ TEST(BlasBinding, DgemmComesFromTheLibblasAlternative) {
 
 TEST(BlasBinding, SolverPinsOpenBlasToOneThread) {
     // After a solver exists, OpenBLAS (when it is the BLAS) runs on one thread.
-    ifsim::fem::LinearSolver solver;
-    Eigen::SparseMatrix<double> a(2, 2);
-    a.insert(0, 0) = 2.0;
-    a.insert(1, 1) = 4.0;
-    a.makeCompressed();
-    std::string error;
-    ASSERT_TRUE(solver.factorise(a, 1, error)) << error;
+    ASSERT_TRUE(factorise_once());
     if (!ifsim::fem::blas_binding().openblas) {
         GTEST_SKIP() << "the BLAS is not OpenBLAS";
     }
@@ -56,13 +61,7 @@ TEST(BlasBinding, SolverRunsOpenBlasOnKernelsTheCpuCarries) {
     // Debian 12's OpenBLAS falls back to its SSE3 kernels on CPUs newer than itself (an Emerald
     // Rapids Xeon here: dgemm 4x slower). Once a solver exists, the set in use is not that
     // fallback on any CPU with AVX, unless the user named one.
-    ifsim::fem::LinearSolver solver;
-    Eigen::SparseMatrix<double> a(2, 2);
-    a.insert(0, 0) = 2.0;
-    a.insert(1, 1) = 4.0;
-    a.makeCompressed();
-    std::string error;
-    ASSERT_TRUE(solver.factorise(a, 1, error)) << error;
+    ASSERT_TRUE(factorise_once());
     const ifsim::fem::BlasBinding b = ifsim::fem::blas_binding();
     if (!b.openblas) {
         GTEST_SKIP() << "the BLAS is not OpenBLAS";
