@@ -3,8 +3,8 @@
 // column order exactly as the serial column scatter does: the result is bitwise the serial
 // one for any thread count and any block count. Each block walks all columns and takes from
 // each the stretch of its own rows (row indices are sorted within a column; the stretch starts
-// are found once per matrix pattern in prepare). GMRES's products with the tangent
-// (fem/linear_solver.cpp) were serial: 1.6 ms of each 6.9 ms step on the fine §6 mesh.
+// are found in prepare, once per GMRES solve, a pass over the entries). GMRES's products with the
+// tangent (fem/linear_solver.cpp) were serial: 1.6 ms of each 6.9 ms step on the fine §6 mesh.
 
 #include <array>
 #include <vector>
