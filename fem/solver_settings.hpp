@@ -113,6 +113,12 @@ struct SolverSettings {
     // acceptance test is unchanged: converged with settled targets. 0: gather only at
     // convergence.
     double early_gather_residual = 1.0e-5;
+    // After an increment that needed the pairs' slip viscosity (the retry at the finest cut),
+    // the next increments at the finest cut take it at once instead of failing first without
+    // it; the first increment of a coarser size (after growth) or of the next step tries
+    // without again. On the fine §6 novel run 47 increments in a row of gravity stage 3 each
+    // failed without it first (278 of 1 314 s; docs/large-scale-test.md, session 26).
+    bool hold_slip_viscosity = false;
     std::size_t element_grain = 64; // elements per task in the element loops
     // Diagnostic: at every Newton iteration compare the tangent with central differences of
     // the residual along the Newton direction (fem/tangent_check.cpp; costs 4 residual

@@ -418,7 +418,16 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
             s.contacts_.set_viscous_retry(false);
         }
     } budget_off{*this};
-    bool viscous_retry = false; // the increment is being solved again with the slip viscosity
+    bool viscous_retry = false; // the increment is solved with the slip viscosity
+    bool viscous_held = false;  // ... without having failed first (hold_slip_viscosity)
+    const auto set_viscous = [&](bool on, bool held) {
+        viscous_retry = on;
+        viscous_held = held;
+        contacts_.set_viscous_retry(on);
+        if (on) {
+            dt_last_ = 0.0; // the retry's first guess, also when held: the same solve
+        }
+    };
     for (int k = std::max(1, from.step); k <= steps; ++k) {
         // Automatic increment control inside the nominal step [t_a, t_step]: the increment is
         // halved on failure (up to max_cuts times) and doubled again after growth_after
@@ -429,6 +438,9 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
         const double t_step = double(k) / steps;
         int depth = resumed ? from.depth : 0;
         int streak = resumed ? from.streak : 0;
+        if (resumed && from.viscous_held) {
+            set_viscous(true, true);
+        }
         step_substeps_start_ =
             contacts_.counters().model_substeps - (resumed ? from.step_substeps : 0.0);
         step_over_budget_ = false;
@@ -446,10 +458,11 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
             std::string error;
             if (solve_increment(t_a, t_b, info, error, on_iteration)) {
                 commit_increment(t_b - t_a);
+                const bool was_viscous = viscous_retry;
                 if (viscous_retry) {
                     ++counters_.viscous_increments;
-                    viscous_retry = false;
-                    contacts_.set_viscous_retry(false);
+                    counters_.viscous_holds += viscous_held ? 1 : 0;
+                    set_viscous(false, false);
                 }
                 ++result.increments;
                 counters_.worst_accepted_residual =
@@ -464,10 +477,21 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
                         ++counters_.increment_growths;
                     }
                 }
+                // Held: the next increment, still at the finest cut of this step, takes the
+                // viscosity at once (SolverSettings::hold_slip_viscosity).
+                const bool hold =
+                    was_viscous && settings_.hold_slip_viscosity && !last && depth >= max_cuts;
+                if (hold) {
+                    set_viscous(true, true);
+                }
                 info.next =
-                    last ? StageCursor{k + 1, t_step, 0, 0, 0.0}
-                         : StageCursor{k, t_a, depth, streak,
-                                       contacts_.counters().model_substeps - step_substeps_start_};
+                    last ? StageCursor{k + 1, t_step, 0, 0, 0.0, false}
+                         : StageCursor{k,
+                                       t_a,
+                                       depth,
+                                       streak,
+                                       contacts_.counters().model_substeps - step_substeps_start_,
+                                       hold};
                 if (on_increment) {
                     on_increment(info);
                 }
@@ -487,9 +511,7 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
                 // No equilibrium near the last one even at the finest increment: a band past
                 // its peak under load control (docs/fem.md, "Slip viscosity"). Once more with
                 // the pairs' slip viscosity, for this increment only.
-                viscous_retry = true;
-                contacts_.set_viscous_retry(true);
-                dt_last_ = 0.0;
+                set_viscous(true, false);
                 continue;
             }
             if (depth >= max_cuts) {

@@ -78,6 +78,7 @@ struct SolverCounters {
     long contact_relaxed_reruns = 0;  // see ContactPairCounters
     double contact_relaxed_point_updates = 0.0;
     long viscous_increments = 0; // increments committed on a retry with the slip viscosity
+    long viscous_holds = 0;      // of those, taken at once (SolverSettings::hold_slip_viscosity)
     double contact_viscous_point_updates = 0.0; // slip viscosity (ContactPairCounters)
     double contact_viscous_share_max = 0.0;
     double contact_viscous_traction_max = 0.0;
@@ -110,6 +111,7 @@ struct StageCursor {
     int depth = 0;
     int streak = 0;
     double step_substeps = 0.0; // interface-model substeps the step had spent (its work bound)
+    bool viscous_held = false;  // the next increment takes the slip viscosity at once
 };
 
 struct IncrementInfo {

@@ -388,6 +388,7 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
         c.constitutive_evaluations + rounded(c.contact_constitutive_evaluations);
     k["cuts"] = c.cuts;
     k["viscous_increments"] = c.viscous_increments;
+    k["viscous_holds"] = c.viscous_holds;
     k["increment_growths"] = c.increment_growths;
     k["predictor_solves"] = c.predictor_solves;
     k["predictor_fallbacks"] = c.predictor_fallbacks;

@@ -32,6 +32,7 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
                   "max_gathers",
                   "gather_relaxation",
                   "early_gather_residual",
+                  "hold_slip_viscosity",
                   "linear_solver",
                   "tangent",
                   "predictor",
@@ -64,6 +65,7 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
                                           Bounds::closed_open(0.0, 1.0));
     s.check_tangent = t.boolean_or("check_tangent", false);
     s.divergence_check = t.boolean_or("divergence_check", s.divergence_check);
+    s.hold_slip_viscosity = t.boolean_or("hold_slip_viscosity", s.hold_slip_viscosity);
     s.reuse_factorisation = t.boolean_or("reuse_factorisation", s.reuse_factorisation);
     s.krylov_tolerance =
         t.number_or("krylov_tolerance", s.krylov_tolerance, Bounds::open(0.0, 1.0));

@@ -37,7 +37,9 @@ struct ShearBoxOptions {
     int max_gathers = SolverSettings{}.max_gathers; // 0: explicit gather (the paper's)
     bool check_tangent = false;                     // SolverSettings::check_tangent
     bool reuse_factorisation = false;               // SolverSettings::reuse_factorisation
-    std::function<void(ContactPairSpec&)> adjust;   // last changes to the contact pair
+    bool hold_slip_viscosity = false;               // SolverSettings::hold_slip_viscosity
+    bool elastic_soil = false; // linear-elastic soil (E 1e5 kPa): only the interface can fail
+    std::function<void(ContactPairSpec&)> adjust; // last changes to the contact pair
 };
 
 struct ShearBoxRun {
@@ -98,6 +100,13 @@ inline ShearBox build_shear_box(const ShearBoxOptions& o) {
     y[6] = e0;
     y[static_cast<std::size_t>(Hypoplasticity::h_index + (d3 ? 4 : 3))] = -R / std::sqrt(2.0);
     soil.initial_state = y;
+    if (o.elastic_soil) {
+        LinearElasticParams sand;
+        sand.E = 1.0e5;
+        sand.nu = 0.25;
+        soil.material = sand;
+        soil.initial_state.resize(LinearElastic::n_state);
+    }
 
     SolverSettings settings;
     settings.max_iterations = o.max_iterations;
@@ -105,6 +114,7 @@ inline ShearBox build_shear_box(const ShearBoxOptions& o) {
     settings.max_gathers = o.max_gathers;
     settings.check_tangent = o.check_tangent;
     settings.reuse_factorisation = o.reuse_factorisation;
+    settings.hold_slip_viscosity = o.hold_slip_viscosity;
     ShearBox box;
     box.solver = std::make_unique<StaticSolver>(mesh, std::vector<ElementSetMaterial>{plate, soil},
                                                 settings);

@@ -3,11 +3,14 @@
 // increment or only when the solver retries an increment that failed at its finest cut. On the
 // §5 shear box: its tangent is consistent, it adds eta times the slip rate to the shear (also
 // in cut increments), and kept for retries it leaves a run that needs no retry unchanged bit
-// for bit.
+// for bit. Pushed by force past the band's capacity, a run that holds the viscosity at the
+// finest cut (SolverSettings::hold_slip_viscosity) ends where the retrying run ends, with fewer
+// failed attempts, also when resumed from a snapshot.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -133,6 +136,133 @@ TEST(SlipViscosity, RetriesAnIncrementThatFailedAtTheFinestCut) {
     // Consolidation needs the same iterations in both; the failed shear increment twice the
     // plain run's two.
     EXPECT_EQ(run.counters.newton_iterations - plain.counters.newton_iterations, 2);
+}
+
+// Force control past the band's capacity: the plate is fixed and a pressure on the soil's left
+// face pushes the soil along +x (shear on the band = pressure x 0.02 m / 0.1 m). The soil is
+// elastic, so only the band can fail. A preload stage takes the band to 38 kPa of shear; the push
+// stage ramps it to 48 kPa in two steps, past the band's limit (about 41 kPa: with the
+// viscosity's 1e5 kPa per m of slip per step the slip grows without bound beyond it). There no
+// static equilibrium exists: at the finest cut every increment fails without the viscosity.
+struct PushBox {
+    ShearBox box;
+    Stage preload, push;
+};
+
+PushBox push_past_capacity(bool hold) {
+    ShearBoxOptions o = box(1.0e5, false);
+    o.elastic_soil = true;
+    o.max_cuts = 2;
+    o.max_iterations = 4; // a failed attempt costs 4 iterations (no divergence before)
+    o.hold_slip_viscosity = hold;
+    PushBox p{build_shear_box(o), {}, {}};
+    Stage push = p.box.consolidation;
+    push.name = "push";
+    push.steps = 2;
+    // The soil's top is free along x (tied, as a rigid cap); the plate stays fixed.
+    std::erase_if(push.displacements,
+                  [](const PrescribedDisplacement& d) { return d.node_set == "soil.top"; });
+    push.equal_displacements.push_back({"soil.top", 0});
+    p.preload = push;
+    p.preload.name = "preload";
+    p.preload.steps = 1;
+    p.preload.pressures.push_back({"soil.left", 0.0, 190.0});
+    p.push = push;
+    p.push.pressures.push_back({"soil.left", 190.0, 240.0});
+    return p;
+}
+
+struct PushRun {
+    StageResult result;
+    std::vector<double> u;
+    SolverCounters counters;
+    // After the first increment whose successor takes the viscosity at once (held runs):
+    SolverSnapshot snapshot;
+    StageCursor cursor;
+    long holds_before = 0;          // held increments committed before the snapshot
+    long iterations_before = 0;     // Newton iterations before the snapshot
+    std::vector<double> t_t1_after; // band shear after each later increment
+};
+
+PushRun run_push(PushBox& p) {
+    StaticSolver& solver = *p.box.solver;
+    PushRun r;
+    r.result = solver.run_stage(p.box.consolidation);
+    if (r.result.ok) {
+        r.result = solver.run_stage(p.preload);
+    }
+    if (r.result.ok) {
+        bool taken = false;
+        r.result = solver.run_stage(p.push, [&](const IncrementInfo& info) {
+            if (taken) {
+                r.t_t1_after.push_back(solver.contacts()[0]->resultant().shear[0]);
+            }
+            if (!taken && info.next.viscous_held) {
+                taken = true;
+                r.snapshot = solver.snapshot();
+                r.cursor = info.next;
+                r.holds_before = solver.counters().viscous_holds;
+                r.iterations_before = solver.counters().newton_iterations;
+            }
+        });
+    }
+    r.u = solver.displacement();
+    r.counters = solver.counters();
+    return r;
+}
+
+// Held (SolverSettings::hold_slip_viscosity): the increments after the first viscous one at the
+// finest cut take the viscosity at once. The held solve is the retry's (same state, same first
+// guess), so the run ends bitwise where the retrying run ends, with one failed attempt (the
+// Newton budget, 4 iterations) fewer per held increment.
+TEST(SlipViscosity, HeldViscositySkipsTheFailedFirstAttemptsAndKeepsTheResult) {
+    PushBox a = push_past_capacity(false);
+    PushBox b = push_past_capacity(true);
+    const PushRun retried = run_push(a);
+    const PushRun held = run_push(b);
+    ASSERT_TRUE(retried.result.ok) << retried.result.reason;
+    ASSERT_TRUE(held.result.ok) << held.result.reason;
+    ASSERT_GE(retried.counters.viscous_increments, 2);
+    EXPECT_EQ(retried.counters.viscous_holds, 0);
+    EXPECT_EQ(held.counters.viscous_increments, retried.counters.viscous_increments);
+    ASSERT_GE(held.counters.viscous_holds, 2);
+    EXPECT_LT(held.counters.viscous_holds, held.counters.viscous_increments);
+    EXPECT_EQ(retried.counters.newton_iterations - held.counters.newton_iterations,
+              4 * held.counters.viscous_holds);
+    EXPECT_EQ(held.counters.cuts, retried.counters.cuts);
+    ASSERT_EQ(held.u.size(), retried.u.size());
+    for (std::size_t i = 0; i < held.u.size(); ++i) {
+        EXPECT_EQ(held.u[i], retried.u[i]) << i;
+    }
+}
+
+// A run resumed from a snapshot taken where the next increment is held goes on holding: the
+// stage cursor carries the flag (and checkpoints write it), so the rest is bit for bit the same,
+// with as many held increments (dropped, the first would fail once more without the viscosity).
+TEST(SlipViscosity, ResumedRunKeepsTheHeldViscosity) {
+    PushBox a = push_past_capacity(true);
+    const PushRun whole = run_push(a);
+    ASSERT_TRUE(whole.result.ok) << whole.result.reason;
+    ASSERT_TRUE(whole.cursor.viscous_held);
+    ASSERT_FALSE(whole.t_t1_after.empty());
+
+    PushBox b = push_past_capacity(true);
+    StaticSolver& solver = *b.box.solver;
+    ASSERT_TRUE(solver.run_stage(b.box.consolidation).ok);
+    ASSERT_TRUE(solver.run_stage(b.preload).ok);
+    solver.restore(b.push, whole.snapshot);
+    const SolverCounters before = solver.counters();
+    std::vector<double> t_t1;
+    const StageResult r = solver.resume_stage(b.push, whole.cursor, [&](const IncrementInfo&) {
+        t_t1.push_back(solver.contacts()[0]->resultant().shear[0]);
+    });
+    ASSERT_TRUE(r.ok) << r.reason;
+    EXPECT_EQ(t_t1, whole.t_t1_after);
+    EXPECT_EQ(solver.displacement(), whole.u);
+    EXPECT_EQ(solver.counters().viscous_holds - before.viscous_holds,
+              whole.counters.viscous_holds - whole.holds_before);
+    EXPECT_EQ(solver.counters().newton_iterations - before.newton_iterations,
+              whole.counters.newton_iterations - whole.iterations_before);
 }
 
 } // namespace
