@@ -438,7 +438,10 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
         const double t_step = double(k) / steps;
         int depth = resumed ? from.depth : 0;
         int streak = resumed ? from.streak : 0;
-        if (resumed && from.viscous_held) {
+        // A resume may have changed the settings (ifsim resume --set): hold only where this
+        // run would have held.
+        if (resumed && from.viscous_held && settings_.hold_slip_viscosity && depth >= max_cuts &&
+            contacts_.viscous_fallback()) {
             set_viscous(true, true);
         }
         step_substeps_start_ =
@@ -520,7 +523,10 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
                     "stage {} ('{}'), step {} of {}, pseudo-time {:.6g} to {:.6g}: {} (after "
                     "halving the step {} times{})",
                     stage_count_, stage.name, k, steps, t_a, t_b, error, depth,
-                    viscous_retry ? ", the last time with the slip viscosity" : "");
+                    viscous_retry ? (viscous_held ? ", the last time with the slip viscosity, held "
+                                                    "from the increment before"
+                                                  : ", the last time with the slip viscosity")
+                                  : "");
                 return result;
             }
             ++counters_.cuts;

@@ -180,6 +180,7 @@ struct PushRun {
     StageCursor cursor;
     long holds_before = 0;          // held increments committed before the snapshot
     long iterations_before = 0;     // Newton iterations before the snapshot
+    int misplaced_holds = 0;        // held increments not at the finest cut or first in their step
     std::vector<double> t_t1_after; // band shear after each later increment
 };
 
@@ -192,7 +193,13 @@ PushRun run_push(PushBox& p) {
     }
     if (r.result.ok) {
         bool taken = false;
+        long holds = solver.counters().viscous_holds;
         r.result = solver.run_stage(p.push, [&](const IncrementInfo& info) {
+            if (solver.counters().viscous_holds > holds) {
+                holds = solver.counters().viscous_holds;
+                const bool first_of_step = info.t_begin == double(info.step - 1) / p.push.steps;
+                r.misplaced_holds += info.cut_depth != 2 || first_of_step ? 1 : 0;
+            }
             if (taken) {
                 r.t_t1_after.push_back(solver.contacts()[0]->resultant().shear[0]);
             }
@@ -229,6 +236,7 @@ TEST(SlipViscosity, HeldViscositySkipsTheFailedFirstAttemptsAndKeepsTheResult) {
     EXPECT_EQ(retried.counters.newton_iterations - held.counters.newton_iterations,
               4 * held.counters.viscous_holds);
     EXPECT_EQ(held.counters.cuts, retried.counters.cuts);
+    EXPECT_EQ(held.misplaced_holds, 0); // a hold never leaks into a grown increment or step
     ASSERT_EQ(held.u.size(), retried.u.size());
     for (std::size_t i = 0; i < held.u.size(); ++i) {
         EXPECT_EQ(held.u[i], retried.u[i]) << i;
