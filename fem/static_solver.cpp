@@ -420,6 +420,7 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
     } budget_off{*this};
     bool viscous_retry = false; // the increment is solved with the slip viscosity
     bool viscous_held = false;  // ... without having failed first (hold_slip_viscosity)
+    bool held_failed = false;   // this increment failed held and is solved without it
     const auto set_viscous = [&](bool on, bool held) {
         viscous_retry = on;
         viscous_held = held;
@@ -463,6 +464,7 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
             std::string error;
             if (solve_increment(t_a, t_b, info, error, on_iteration)) {
                 commit_increment(t_b - t_a);
+                held_failed = false;
                 const bool was_viscous = viscous_retry;
                 if (viscous_retry) {
                     ++counters_.viscous_increments;
@@ -517,7 +519,16 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
                                             stage_count_, stage.name, k, steps, t_a, t_b, error);
                 return result;
             }
-            if (depth >= max_cuts && !viscous_retry && contacts_.viscous_fallback()) {
+            if (depth >= max_cuts && viscous_held) {
+                // Held, and no equilibrium with the viscosity: the band may have found its own
+                // again. Once more without it, where the retrying run would have started.
+                ++counters_.viscous_hold_failures;
+                set_viscous(false, false);
+                held_failed = true;
+                continue;
+            }
+            if (depth >= max_cuts && !viscous_retry && !held_failed &&
+                contacts_.viscous_fallback()) {
                 // No equilibrium near the last one even at the finest increment: a band past
                 // its peak under load control (docs/fem.md, "Slip viscosity"). Once more with
                 // the pairs' slip viscosity, for this increment only.
@@ -530,10 +541,10 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
                     "stage {} ('{}'), step {} of {}, pseudo-time {:.6g} to {:.6g}: {} (after "
                     "halving the step {} times{})",
                     stage_count_, stage.name, k, steps, t_a, t_b, error, depth,
-                    viscous_retry ? (viscous_held ? ", the last time with the slip viscosity, held "
-                                                    "from the increment before"
-                                                  : ", the last time with the slip viscosity")
-                                  : "");
+                    held_failed     ? ", with the slip viscosity held from the increment before "
+                                      "and then without it"
+                    : viscous_retry ? ", the last time with the slip viscosity"
+                                    : "");
                 return result;
             }
             ++counters_.cuts;

@@ -77,8 +77,9 @@ struct SolverCounters {
     long partition_releases = 0;      // contact points whose held sub-increments were released
     long contact_relaxed_reruns = 0;  // see ContactPairCounters
     double contact_relaxed_point_updates = 0.0;
-    long viscous_increments = 0; // increments committed on a retry with the slip viscosity
-    long viscous_holds = 0;      // of those, taken at once (SolverSettings::hold_slip_viscosity)
+    long viscous_increments = 0;    // increments committed on a retry with the slip viscosity
+    long viscous_holds = 0;         // of those, taken at once (SolverSettings::hold_slip_viscosity)
+    long viscous_hold_failures = 0; // held increments that failed and were solved without it
     double contact_viscous_point_updates = 0.0; // slip viscosity (ContactPairCounters)
     double contact_viscous_share_max = 0.0;
     double contact_viscous_traction_max = 0.0;

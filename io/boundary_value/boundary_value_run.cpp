@@ -389,6 +389,7 @@ void add_boundary_value_results(RunSummary& summary, const BoundaryValueScene& s
     k["cuts"] = c.cuts;
     k["viscous_increments"] = c.viscous_increments;
     k["viscous_holds"] = c.viscous_holds;
+    k["viscous_hold_failures"] = c.viscous_hold_failures;
     k["increment_growths"] = c.increment_growths;
     k["predictor_solves"] = c.predictor_solves;
     k["predictor_fallbacks"] = c.predictor_fallbacks;
