@@ -441,12 +441,10 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
         int streak = resumed ? from.streak : 0;
         // A resume may have changed the settings (ifsim resume --set): hold only where this
         // run would have held.
-        const bool may_hold =
-            resumed && settings_.hold_slip_viscosity && contacts_.viscous_fallback();
-        if (may_hold && from.viscous_hold == ViscousHold::next && depth >= max_cuts) {
+        if (resumed && from.viscous_held && settings_.hold_slip_viscosity && depth >= max_cuts &&
+            contacts_.viscous_fallback()) {
             set_viscous(true, true);
         }
-        bool probe = may_hold && from.viscous_hold == ViscousHold::after_probe;
         step_substeps_start_ =
             contacts_.counters().model_substeps - (resumed ? from.step_substeps : 0.0);
         step_over_budget_ = false;
@@ -484,20 +482,15 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
                         ++counters_.increment_growths;
                     }
                 }
-                // Held (SolverSettings::hold_slip_viscosity): the next increment, still at the
-                // finest cut of this step, takes the viscosity at once. Grown, it tries without
-                // (a probe); if that fails, the cut increment takes it at once.
-                const bool carry = was_viscous && settings_.hold_slip_viscosity && !last;
-                ViscousHold hold = ViscousHold::none;
-                if (carry) {
-                    hold = depth >= max_cuts ? ViscousHold::next : ViscousHold::after_probe;
-                }
-                if (hold == ViscousHold::next) {
+                // Held: the next increment, still at the finest cut of this step, takes the
+                // viscosity at once (SolverSettings::hold_slip_viscosity).
+                const bool hold =
+                    was_viscous && settings_.hold_slip_viscosity && !last && depth >= max_cuts;
+                if (hold) {
                     set_viscous(true, true);
                 }
-                probe = hold == ViscousHold::after_probe;
                 info.next =
-                    last ? StageCursor{k + 1, t_step, 0, 0, 0.0, ViscousHold::none}
+                    last ? StageCursor{k + 1, t_step, 0, 0, 0.0, false}
                          : StageCursor{k,
                                        t_a,
                                        depth,
@@ -552,10 +545,6 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
                 0.0; // no extrapolation for the retry: it may have misled (tangent predictor)
             ++depth;
             streak = 0;
-            if (probe && depth >= max_cuts) {
-                set_viscous(true, true); // the probe failed: back at the finest cut, held
-            }
-            probe = false;
         }
     }
     return result;

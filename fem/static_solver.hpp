@@ -106,20 +106,13 @@ struct SolverTimers {
 // Where the increment control of a stage stands: the nominal step, the start of the next
 // increment in it, the halvings in force and the converged increments since the last change
 // (a committed increment's `next`, from which a resumed run continues).
-// How the pairs' slip viscosity carries over to the next increment (hold_slip_viscosity).
-enum class ViscousHold : int {
-    none = 0,
-    next = 1,        // the next increment, at the finest cut, takes it at once
-    after_probe = 2, // the next increment, grown, tries without it; cut back, it takes it
-};
-
 struct StageCursor {
     int step = 1;
     double t_a = 0.0;
     int depth = 0;
     int streak = 0;
     double step_substeps = 0.0; // interface-model substeps the step had spent (its work bound)
-    ViscousHold viscous_hold = ViscousHold::none;
+    bool viscous_held = false;  // the next increment takes the slip viscosity at once
 };
 
 struct IncrementInfo {

@@ -69,7 +69,7 @@ void write_boundary_value_checkpoint(const std::filesystem::path& dir,
                 c.cursor.streak, c.steps_before, s.stage_count, s.committed_references}));
     w.put("cursor_t", std::vector<double>{c.cursor.t_a});
     w.put("cursor_step_substeps", std::vector<double>{c.cursor.step_substeps});
-    w.put("cursor_viscous_held", ints({static_cast<int>(c.cursor.viscous_hold)}));
+    w.put("cursor_viscous_held", ints({c.cursor.viscous_held ? 1 : 0}));
     w.put("iterations", std::vector<std::int64_t>(c.iterations.begin(), c.iterations.end()));
     w.put("u", s.u);
     w.put("u_stage_start", s.u_stage_start);
@@ -122,11 +122,11 @@ BoundaryValueCheckpoint read_boundary_value_checkpoint(const std::filesystem::pa
     // Written since hold_slip_viscosity: without it the next increment tries without the viscosity.
     if (r.has("cursor_viscous_held")) {
         const auto held = r.integers("cursor_viscous_held");
-        if (held.size() != 1 || held[0] < 0 || held[0] > 2) {
+        if (held.size() != 1 || held[0] < 0 || held[0] > 1) {
             throw CheckpointError(
                 fmt::format("{}: malformed cursor_viscous_held section", file.string()));
         }
-        c.cursor.viscous_hold = static_cast<fem::ViscousHold>(held[0]);
+        c.cursor.viscous_held = held[0] == 1;
     }
     for (std::int64_t v : r.integers("iterations")) {
         c.iterations.push_back(static_cast<int>(v));
