@@ -322,7 +322,7 @@ void ContinuumAssembly::tangent_d(const Mesh& mesh, SparseSystem& system,
     const bool reduced = settings_.integration == Integration::reduced;
     for (int c = 0; c < system.n_colours(); ++c) {
         const auto elements = system.colour(c);
-        for_each_index(elements.size(), settings_.element_grain, [&](std::size_t k) {
+        for_each_index(elements.size(), colour_grain(elements.size()), [&](std::size_t k) {
             const int e = elements[k];
             const auto eu = static_cast<std::size_t>(e);
             const auto set = static_cast<std::size_t>(set_of_element_[eu]);

@@ -12,11 +12,12 @@ ratio of core-seconds (paper total x 4 over ours x threads). Writes
   OUT/table5.md          the same as a Markdown table
 
 Usage: scripts/large_shear_table5.py [--ifsim build/ifsim] [--out out/table5]
-       [--mesh fine|coarse] [--runs coulomb,novel-hypo,novel-sanisand,stutz-hypo]
+       [--mesh fine|medium|coarse] [--runs coulomb,novel-hypo,novel-sanisand,stutz-hypo]
        [--threads N] [--timeout-minutes M] [--reuse]
 
 --mesh coarse runs the same scenes on scenes/meshes/large-shear-coarse.msh (minutes instead
-of hours; not the paper's resolution). --timeout-minutes stops a run with SIGTERM after M
+of hours; not the paper's resolution); --mesh medium on large-shear-medium.msh (the mesh study
+of docs/large-scale-test.md). --timeout-minutes stops a run with SIGTERM after M
 minutes (ifsim then ends it in a defined state and says where); the table shows it as
 "stopped". --reuse takes a finished run's summary.json instead of running it again.
 Exits 1 when a run did not end ok.
@@ -54,8 +55,8 @@ def fail(msg):
 def run_scene(ifsim, name, out, mesh, threads, timeout_minutes):
     cmd = [str(ifsim), "run", str(SCENES / f"large-shear-{name}.toml"), "--out", str(out),
            "--replace", "--quiet", "--threads", str(threads)]
-    if mesh == "coarse":
-        cmd += ["--set", "mesh.file=../meshes/large-shear-coarse.msh"]
+    if mesh != "fine":
+        cmd += ["--set", f"mesh.file=../meshes/large-shear-{mesh}.msh"]
     print(f"large_shear_table5: {' '.join(cmd)}", flush=True)
     proc = subprocess.Popen(cmd)
     try:
@@ -99,7 +100,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--ifsim", default=str(ROOT / "build" / "ifsim"))
     ap.add_argument("--out", default="out/table5")
-    ap.add_argument("--mesh", choices=["fine", "coarse"], default="fine")
+    ap.add_argument("--mesh", choices=["fine", "medium", "coarse"], default="fine")
     ap.add_argument("--runs", default=",".join(PAPER))
     ap.add_argument("--threads", type=int, default=os.cpu_count() or 1)
     ap.add_argument("--timeout-minutes", type=float, default=0.0)

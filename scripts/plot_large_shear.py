@@ -40,17 +40,21 @@ def main():
         sys.exit(__doc__)
     out = sys.argv[1]
     fig, ax = plt.subplots(1, 3, figsize=(15, 4.5))
-    for run in sys.argv[2:]:
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for k, run in enumerate(sys.argv[2:]):
         rows = read(run)
         # From the last row before the wall moves (end of gravity) on.
         start = max(i for i, r in enumerate(rows) if int(r["stage"]) <= 4)
         rows = rows[start:]
         w = [1e3 * num(r, "wall") for r in rows]
         label = Path(run).name
-        ax[0].plot(w, [num(r, "t_t1") for r in rows], label=label)
-        ax[1].plot(w, [num(r, "t_n") for r in rows], label=label)
-        ax[2].plot(w, [num(r, "p.s_p1") for r in rows], label=f"{label}: σ_p1 (vertical)")
-        ax[2].plot(w, [num(r, "p.s_p2") for r in rows], "--", label=f"{label}: σ_p2 (horizontal)")
+        c = colours[k % len(colours)]  # one colour per run in every panel
+        ax[0].plot(w, [num(r, "t_t1") for r in rows], color=c, label=label)
+        ax[1].plot(w, [num(r, "t_n") for r in rows], color=c, label=label)
+        ax[2].plot(w, [num(r, "p.s_p1") for r in rows], color=c,
+                   label=f"{label}: σ_p1 (vertical)")
+        ax[2].plot(w, [num(r, "p.s_p2") for r in rows], "--", color=c,
+                   label=f"{label}: σ_p2 (horizontal)")
     titles = ["(a) mean shear stress, rough segment", "(b) mean normal stress, rough segment",
               "(c) interface point in the lower half (Fig. 10)"]
     ylabels = ["t_t1 on the soil [kPa] (t1 = down)", "t_n [kPa]", "stress [kPa]"]
