@@ -69,7 +69,10 @@ InterfaceInput<double> held_call() {
 }
 
 InterfaceSettings the_scene_settings() {
-    InterfaceSettings s; // scenes/large-shear/large-shear-novel-sanisand.toml's rough pair
+    // The rough pair of scenes/large-shear/large-shear-novel-sanisand.toml as it was when
+    // the bug showed (sessions 18-27: with the switch to Broyden updates, where the polishing
+    // correction is a Broyden step).
+    InterfaceSettings s;
     s.adaptive = true;
     s.shear_band_thickness = 0.006;
     s.work_model_substeps = 8.0;
