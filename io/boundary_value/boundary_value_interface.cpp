@@ -102,6 +102,7 @@ const std::vector<std::string_view>& boundary_value_interface_keys() {
                                                        "newton_jacobian",
                                                        "newton_fallback",
                                                        "newton_switch_ratio",
+                                                       "newton_switch_jacobian",
                                                        "jacobian_tolerance",
                                                        "polish_iterations",
                                                        "adaptive_partition",
@@ -148,9 +149,9 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     const InterfaceFormulationSpec& f = out.formulation;
     if (f.is_coulomb()) {
         constexpr std::string_view algorithm1_keys[] = {
-            "model_tolerance",    "model_integration", "newton_jacobian",
-            "jacobian_tolerance", "polish_iterations", "adaptive_partition",
-            "defer_jacobian",     "newton_fallback",   "newton_switch_ratio"};
+            "model_tolerance",     "model_integration",     "newton_jacobian", "jacobian_tolerance",
+            "polish_iterations",   "adaptive_partition",    "defer_jacobian",  "newton_fallback",
+            "newton_switch_ratio", "newton_switch_jacobian"};
         t.reject(algorithm1_keys, algorithm1_key_with_coulomb);
         constexpr std::string_view viscosity_key[] = {"slip_viscosity", "slip_viscosity_use"};
         t.reject(viscosity_key, "regularises a continuum interface band past its peak; "
@@ -189,6 +190,10 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     // With the rate Jacobian: a lane whose Newton creeps goes on with the difference Jacobian.
     is.newton_switch_ratio =
         t.number_or("newton_switch_ratio", is.newton_switch_ratio, Bounds::closed_open(0.0, 1.0));
+    // What it switches to: Broyden's updates (no more evaluations, but iterates that can jump
+    // far off) or the perturbation Jacobian (k + 1 evaluations per iteration).
+    is.newton_switch_broyden =
+        t.choice_or("newton_switch_jacobian", "broyden", {"broyden", "perturbation"}) == "broyden";
     is.jacobian_tolerance =
         t.number_or("jacobian_tolerance", is.jacobian_tolerance, Bounds::closed_open(0.0, 1.0));
     is.polish_iterations =

@@ -181,6 +181,30 @@ TEST(BoundaryValueScene, DeferJacobianKey) {
                                       "interface.defer_jacobian", "true or false");
 }
 
+// newton_switch_jacobian (what a creeping rate-Jacobian lane switches to) reaches the pair:
+// Broyden's updates by default, the perturbation Jacobian on request; another word is refused
+// naming the key and its choices, and Coulomb friction refuses the key.
+TEST(BoundaryValueScene, NewtonSwitchJacobianKey) {
+    const auto interface_of = [](const BoundaryValueScene& s) {
+        return s.contacts.at(0).pair.options.interface;
+    };
+    EXPECT_TRUE(interface_of(test::parse_boundary_value(cnl_2d)).newton_switch_broyden);
+    const auto perturbation = interface_of(
+        test::parse_boundary_value(cnl_2d, {"interface.newton_switch_ratio=0.5",
+                                            "interface.newton_switch_jacobian=\"perturbation\""}));
+    EXPECT_FALSE(perturbation.newton_switch_broyden);
+    EXPECT_DOUBLE_EQ(perturbation.newton_switch_ratio, 0.5);
+    test::expect_boundary_value_error(
+        test::replaced(test::read_text(cnl_2d), "roughness = 0.9",
+                       "roughness = 0.9\nnewton_switch_jacobian = \"secant\""),
+        "interface.newton_switch_jacobian", "\"broyden\" | \"perturbation\"");
+    test::expect_boundary_value_error(
+        test::replaced(test::read_text("scenes/fe-simple-shear-coulomb-2d.toml"),
+                       "formulation = \"coulomb\"",
+                       "formulation = \"coulomb\"\nnewton_switch_jacobian = \"perturbation\""),
+        "interface.newton_switch_jacobian", "expected no such key for formulation \"coulomb\"");
+}
+
 // slip_viscosity (a viscous shear traction on a continuum interface, docs/fem.md): off by
 // default, in every increment unless slip_viscosity_use = "retry"; negative values, a use
 // without a viscosity and Coulomb pairs are refused naming the key.
