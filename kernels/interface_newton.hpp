@@ -75,6 +75,13 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
     std::array<T, 3> x_last{T(0.0), T(0.0), T(0.0)}, res_last{T(0.0), T(0.0), T(0.0)};
     std::array<std::array<T, 3>, 3> J_last{};
     const bool broyden = may_switch && s.newton_switch_broyden;
+    // Backtracking (newton_line_search): the last accepted iterate, its residual and the
+    // Newton correction taken from it, and the fraction of that correction being tried.
+    const bool search = s.newton_line_search > 0;
+    const T max_halvings = T(static_cast<double>(s.newton_line_search));
+    std::array<T, 3> x_acc = x, d{T(0.0), T(0.0), T(0.0)};
+    T r_acc = T(0.0), lambda = T(1.0), halvings = T(0.0);
+    Mask stepped(false);
     for (int it = 0; it <= s.max_newton_iterations + s.polish_iterations; ++it) {
         const Mask working = active && !out.converged && !failed;
         if (simd::none(working)) {
@@ -95,15 +102,20 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
         }
         const T r = simd::sqrt(r2) / ref;
         const Mask model_ok = ms.status > -0.5;
+        // A trial that does not lower the residual (or whose model update failed) goes back
+        // to half its step; it takes no part in what follows.
+        const Mask back = search ? (working && stepped && !met && (!model_ok || !(r < r_acc)) &&
+                                    (halvings < max_halvings))
+                                 : Mask(false);
         if (may_switch && it > 0) {
-            switched = switched || (working && model_ok && !met && (r >= s.tolerance) &&
+            switched = switched || (working && !back && model_ok && !met && (r >= s.tolerance) &&
                                     (r > T(s.newton_switch_ratio) * r_before));
         }
-        r_before = simd::select(working, r, r_before);
+        r_before = simd::select(working && !back, r, r_before);
         // The iterate that first meets the tolerance is the result unless a polishing
         // correction ends below the tolerance too: a correction that leaves it (a wild step
         // from a poor Jacobian) must not replace a converged state.
-        const Mask first_met = working && model_ok && !met && (r < s.tolerance);
+        const Mask first_met = working && !back && model_ok && !met && (r < s.tolerance);
         met = met || first_met;
         out.y = select_state<T, NS>(first_met, yt, out.y);
         for (int c = 0; c < 3; ++c) {
@@ -118,11 +130,11 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
         }
         out.residual = simd::select(polished, r, out.residual);
         out.converged = out.converged || now;
-        failed = failed || (working && !model_ok && !met);
-        out.model_failed = out.model_failed || (working && !model_ok && !met);
-        const Mask iterate = working && !now && model_ok;
+        failed = failed || (working && !back && !model_ok && !met);
+        out.model_failed = out.model_failed || (working && !back && !model_ok && !met);
+        const Mask iterate = working && !back && !now && model_ok;
         polish_left = simd::select(iterate && met, polish_left - 1.0, polish_left);
-        if (simd::none(iterate) || it == s.max_newton_iterations + s.polish_iterations) {
+        if (simd::none(iterate || back) || it == s.max_newton_iterations + s.polish_iterations) {
             // Lanes that met the tolerance but ran out of iterations keep their last iterate
             // if it is still below the tolerance, else the one that met it.
             const Mask take = iterate && met && !first_met && (r < s.tolerance);
@@ -132,7 +144,18 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
             }
             out.converged = out.converged || (iterate && met);
             out.residual = simd::select(take || (iterate && !met), r, out.residual);
+            out.residual = simd::select(back, r_acc, out.residual); // where it stood
             break;
+        }
+        if (search && simd::any(back)) {
+            lambda = simd::select(back, 0.5 * lambda, lambda);
+            halvings = simd::select(back, halvings + 1.0, halvings);
+            for (int c = 0; c < k; ++c) {
+                x[c] = simd::select(back, x_acc[c] - lambda * d[c], x[c]);
+            }
+            if (simd::none(iterate)) {
+                continue;
+            }
         }
 
         // Jacobian d sigma_normal / d eps_normal (Eq. 22).
@@ -213,6 +236,16 @@ solve_subincrement(const typename M::Params& mp, const InterfaceSettings& s,
         out.singular = out.singular || (unsolved && !met);
         out.residual = simd::select(unsolved && !met, r, out.residual);
         const Mask step = iterate && sol.solved;
+        if (search) {
+            for (int c = 0; c < k; ++c) {
+                x_acc[c] = simd::select(step, x[c], x_acc[c]);
+                d[c] = simd::select(step, sol.x[c], d[c]);
+            }
+            r_acc = simd::select(step, r, r_acc);
+            lambda = simd::select(step, T(1.0), lambda);
+            halvings = simd::select(step, T(0.0), halvings);
+            stepped = stepped || step;
+        }
         for (int c = 0; c < k; ++c) {
             x[c] = simd::select(step, x[c] - sol.x[c], x[c]);
         }

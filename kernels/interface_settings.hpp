@@ -80,6 +80,14 @@ struct InterfaceSettings {
     // per iteration, each as dear as the base: the coarse hypoplastic run's contact time 2.2x);
     // true, Broyden's rank-one updates of its last Jacobian (no more evaluations).
     bool newton_switch_broyden = true;
+    // Backtracking on Algorithm 1's Newton (0: the paper's plain Newton): an iterate whose
+    // residual is not below the last accepted one's, or whose model update failed, is replaced
+    // by one at half the step from the accepted iterate, up to this many times per step. Near
+    // a Sanisand band's yield cone the response has a kink (elastic one way, plastic the
+    // other), and the full steps jump across it in a two-cycle (r 0.0022 <-> 0.0123 for 30
+    // iterations, whichever Jacobian; docs/large-scale-test.md, session 29). Halvings count
+    // as iterations against max_newton_iterations.
+    int newton_line_search = 0;
     // With the rate Jacobian: a lane that would fail because its Newton does not converge even
     // at the smallest sub-increment gets a second try instead. It goes on from its last accepted
     // sub-increment, at the call's first sub-increment size, on the perturbation Jacobian. The

@@ -103,6 +103,7 @@ const std::vector<std::string_view>& boundary_value_interface_keys() {
                                                        "newton_fallback",
                                                        "newton_switch_ratio",
                                                        "newton_switch_jacobian",
+                                                       "newton_line_search",
                                                        "jacobian_tolerance",
                                                        "polish_iterations",
                                                        "adaptive_partition",
@@ -149,9 +150,10 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     const InterfaceFormulationSpec& f = out.formulation;
     if (f.is_coulomb()) {
         constexpr std::string_view algorithm1_keys[] = {
-            "model_tolerance",     "model_integration",     "newton_jacobian", "jacobian_tolerance",
-            "polish_iterations",   "adaptive_partition",    "defer_jacobian",  "newton_fallback",
-            "newton_switch_ratio", "newton_switch_jacobian"};
+            "model_tolerance",        "model_integration", "newton_jacobian",
+            "jacobian_tolerance",     "polish_iterations", "adaptive_partition",
+            "defer_jacobian",         "newton_fallback",   "newton_switch_ratio",
+            "newton_switch_jacobian", "newton_line_search"};
         t.reject(algorithm1_keys, algorithm1_key_with_coulomb);
         constexpr std::string_view viscosity_key[] = {"slip_viscosity", "slip_viscosity_use"};
         t.reject(viscosity_key, "regularises a continuum interface band past its peak; "
@@ -194,6 +196,9 @@ read_boundary_value_pair(const TableReader& t, const std::string& name, const fe
     // far off) or the perturbation Jacobian (k + 1 evaluations per iteration).
     is.newton_switch_broyden =
         t.choice_or("newton_switch_jacobian", "broyden", {"broyden", "perturbation"}) == "broyden";
+    // Halvings of a Newton step that does not lower Algorithm 1's residual (0: plain Newton).
+    is.newton_line_search =
+        static_cast<int>(t.integer_or("newton_line_search", is.newton_line_search, 0, 60));
     is.jacobian_tolerance =
         t.number_or("jacobian_tolerance", is.jacobian_tolerance, Bounds::closed_open(0.0, 1.0));
     is.polish_iterations =

@@ -35,6 +35,7 @@ void visit_options(ContactOptions& o, Visitor& v) {
     v.flag("newton_fallback", s.newton_fallback);
     v.number("newton_switch_ratio", s.newton_switch_ratio, Bounds::closed_open(0.0, 1.0));
     v.flag("newton_switch_broyden", s.newton_switch_broyden);
+    v.integer("newton_line_search", s.newton_line_search, 0, 60);
     v.number("min_band_fraction", s.min_band_fraction, Bounds::open(0.0, 1.0));
     v.number("max_normal_change", s.max_normal_change, Bounds::positive());
     v.number("open_threshold", s.open_threshold, Bounds::non_negative());

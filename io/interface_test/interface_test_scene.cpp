@@ -17,11 +17,14 @@ namespace {
 using Six = std::array<double, 6>;
 
 // [integration] keys that tune Algorithm 1 (no meaning for Coulomb friction).
-constexpr std::string_view algorithm1_keys[] = {
-    "interface_newton_jacobian", "interface_max_newton_iterations",
-    "interface_newton_fallback", "polish_iterations",
-    "adaptive_tolerance",        "band_collapse",
-    "min_band_fraction"};
+constexpr std::string_view algorithm1_keys[] = {"interface_newton_jacobian",
+                                                "interface_max_newton_iterations",
+                                                "interface_newton_fallback",
+                                                "interface_newton_line_search",
+                                                "polish_iterations",
+                                                "adaptive_tolerance",
+                                                "band_collapse",
+                                                "min_band_fraction"};
 
 struct SampleStart {
     Six stress{};
@@ -134,8 +137,8 @@ void read_integration(const TableReader& root, InterfaceTestScene& scene) {
     t.allow_only({"tolerance", "min_pressure", "max_substeps", "newton_tolerance",
                   "stagnation_tolerance", "max_newton_iterations", "interface_newton_jacobian",
                   "interface_max_newton_iterations", "interface_newton_fallback",
-                  "polish_iterations", "adaptive_tolerance", "band_collapse", "min_band_fraction",
-                  "scheme", "max_step_substeps"});
+                  "interface_newton_line_search", "polish_iterations", "adaptive_tolerance",
+                  "band_collapse", "min_band_fraction", "scheme", "max_step_substeps"});
     InterfaceTestSpec& spec = scene.spec;
     // The continuum models' own integration, for the sample and the interface model alike.
     IntegrationSettings& m = spec.sample_update.settings;
@@ -172,6 +175,8 @@ void read_integration(const TableReader& root, InterfaceTestScene& scene) {
     s.max_newton_iterations = static_cast<int>(
         t.integer_or("interface_max_newton_iterations", s.max_newton_iterations, 1, 10'000));
     s.newton_fallback = t.boolean_or("interface_newton_fallback", s.newton_fallback);
+    s.newton_line_search =
+        static_cast<int>(t.integer_or("interface_newton_line_search", s.newton_line_search, 0, 60));
     s.polish_iterations =
         static_cast<int>(t.integer_or("polish_iterations", s.polish_iterations, 0, 10));
     s.adaptive_tolerance =

@@ -11,12 +11,12 @@ namespace ifsim::io {
 
 namespace {
 
-constexpr std::array<std::string_view, 17> contact_keys = {
-    "tolerance",         "max_subincrement",    "work_newton_iterations", "work_model_substeps",
-    "jacobian",          "perturbation",        "model_tolerance",        "newton_jacobian",
-    "newton_fallback",   "newton_switch_ratio", "newton_switch_jacobian", "jacobian_tolerance",
-    "polish_iterations", "adaptive_partition",  "defer_jacobian",         "slip_viscosity",
-    "slip_viscosity_use"};
+constexpr std::array<std::string_view, 18> contact_keys = {
+    "tolerance",          "max_subincrement",    "work_newton_iterations", "work_model_substeps",
+    "jacobian",           "perturbation",        "model_tolerance",        "newton_jacobian",
+    "newton_fallback",    "newton_switch_ratio", "newton_switch_jacobian", "jacobian_tolerance",
+    "polish_iterations",  "adaptive_partition",  "defer_jacobian",         "slip_viscosity",
+    "slip_viscosity_use", "newton_line_search"};
 
 bool all_digits(std::string_view s) {
     return !s.empty() &&

@@ -205,6 +205,26 @@ TEST(BoundaryValueScene, NewtonSwitchJacobianKey) {
         "interface.newton_switch_jacobian", "expected no such key for formulation \"coulomb\"");
 }
 
+// newton_line_search: 0 (the paper's plain Newton) unless named; bounded, refused with
+// Coulomb, naming the key.
+TEST(BoundaryValueScene, NewtonLineSearchKey) {
+    const auto interface_of = [](const BoundaryValueScene& s) {
+        return s.contacts.at(0).pair.options.interface;
+    };
+    EXPECT_EQ(interface_of(test::parse_boundary_value(cnl_2d)).newton_line_search, 0);
+    EXPECT_EQ(interface_of(test::parse_boundary_value(cnl_2d, {"interface.newton_line_search=4"}))
+                  .newton_line_search,
+              4);
+    test::expect_boundary_value_error(test::replaced(test::read_text(cnl_2d), "roughness = 0.9",
+                                                     "roughness = 0.9\nnewton_line_search = -1"),
+                                      "interface.newton_line_search", "an integer from 0 to 60");
+    test::expect_boundary_value_error(
+        test::replaced(test::read_text("scenes/fe-simple-shear-coulomb-2d.toml"),
+                       "formulation = \"coulomb\"",
+                       "formulation = \"coulomb\"\nnewton_line_search = 4"),
+        "interface.newton_line_search", "expected no such key for formulation \"coulomb\"");
+}
+
 // slip_viscosity (a viscous shear traction on a continuum interface, docs/fem.md): off by
 // default, in every increment unless slip_viscosity_use = "retry"; negative values, a use
 // without a viscosity and Coulomb pairs are refused naming the key.
