@@ -429,6 +429,8 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
             dt_last_ = 0.0; // the retry's first guess, also when held: the same solve
         }
     };
+    int next_start_depth = 0; // carry_cuts: where the next step starts
+    int calm_steps = from.calm_steps;
     for (int k = std::max(1, from.step); k <= steps; ++k) {
         // Automatic increment control inside the nominal step [t_a, t_step]: the increment is
         // halved on failure (up to max_cuts times) and doubled again after growth_after
@@ -437,7 +439,8 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
         const bool resumed = k == from.step;
         double t_a = resumed ? from.t_a : double(k - 1) / steps;
         const double t_step = double(k) / steps;
-        int depth = resumed ? from.depth : 0;
+        int depth = resumed ? from.depth : next_start_depth;
+        const int start_depth = resumed ? from.start_depth : depth;
         int streak = resumed ? from.streak : 0;
         // A resume may have changed the settings (ifsim resume --set): hold only where this
         // run would have held.
@@ -489,14 +492,26 @@ StageResult StaticSolver::stage_from(const Stage& stage, StageCursor from,
                 if (hold) {
                     set_viscous(true, true);
                 }
+                if (last && settings_.carry_cuts > 0) {
+                    // The next step starts where this one ended; a calm run of steps grows it.
+                    calm_steps = depth <= start_depth ? calm_steps + 1 : 0;
+                    next_start_depth = depth;
+                    if (calm_steps >= settings_.carry_cuts && next_start_depth > 0) {
+                        --next_start_depth;
+                        calm_steps = 0;
+                    }
+                }
                 info.next =
-                    last ? StageCursor{k + 1, t_step, 0, 0, 0.0, false}
+                    last ? StageCursor{k + 1, t_step, next_start_depth, 0,
+                                       0.0,   false,  next_start_depth, calm_steps}
                          : StageCursor{k,
                                        t_a,
                                        depth,
                                        streak,
                                        contacts_.counters().model_substeps - step_substeps_start_,
-                                       hold};
+                                       hold,
+                                       start_depth,
+                                       calm_steps};
                 if (on_increment) {
                     on_increment(info);
                 }

@@ -113,6 +113,10 @@ struct StageCursor {
     int streak = 0;
     double step_substeps = 0.0; // interface-model substeps the step had spent (its work bound)
     bool viscous_held = false;  // the next increment takes the slip viscosity at once
+    // SolverSettings::carry_cuts: the cut depth this step started at, and the steps in a row
+    // before it that ended at the depth they started at.
+    int start_depth = 0;
+    int calm_steps = 0;
 };
 
 struct IncrementInfo {

@@ -70,6 +70,7 @@ void write_boundary_value_checkpoint(const std::filesystem::path& dir,
     w.put("cursor_t", std::vector<double>{c.cursor.t_a});
     w.put("cursor_step_substeps", std::vector<double>{c.cursor.step_substeps});
     w.put("cursor_viscous_held", ints({c.cursor.viscous_held ? 1 : 0}));
+    w.put("cursor_carry", ints({c.cursor.start_depth, c.cursor.calm_steps}));
     w.put("iterations", std::vector<std::int64_t>(c.iterations.begin(), c.iterations.end()));
     w.put("u", s.u);
     w.put("u_stage_start", s.u_stage_start);
@@ -127,6 +128,15 @@ BoundaryValueCheckpoint read_boundary_value_checkpoint(const std::filesystem::pa
                 fmt::format("{}: malformed cursor_viscous_held section", file.string()));
         }
         c.cursor.viscous_held = held[0] == 1;
+    }
+    // Written since carry_cuts: without it the step started at full size.
+    if (r.has("cursor_carry")) {
+        const auto carry = r.integers("cursor_carry");
+        if (carry.size() != 2 || carry[0] < 0 || carry[0] > 64 || carry[1] < 0) {
+            throw CheckpointError(fmt::format("{}: malformed cursor_carry section", file.string()));
+        }
+        c.cursor.start_depth = static_cast<int>(carry[0]);
+        c.cursor.calm_steps = static_cast<int>(carry[1]);
     }
     for (std::int64_t v : r.integers("iterations")) {
         c.iterations.push_back(static_cast<int>(v));

@@ -26,6 +26,7 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
                   "max_iterations",
                   "max_cuts",
                   "growth_after",
+                  "carry_cuts",
                   "max_line_search",
                   "stagnation_tolerance",
                   "gather_tolerance",
@@ -53,6 +54,7 @@ void read_solver(const TableReader& root, BoundaryValueScene& scene) {
     s.max_cuts = static_cast<int>(t.integer_or("max_cuts", s.max_cuts, 0, 30));
     s.max_step_substeps = t.number_or("max_step_substeps", s.max_step_substeps, Bounds::positive());
     s.growth_after = static_cast<int>(t.integer_or("growth_after", s.growth_after, 1, 1000));
+    s.carry_cuts = static_cast<int>(t.integer_or("carry_cuts", s.carry_cuts, 0, 1000));
     s.max_line_search = static_cast<int>(t.integer_or("max_line_search", s.max_line_search, 0, 30));
     s.stagnation_tolerance =
         t.number_or("stagnation_tolerance", s.stagnation_tolerance, Bounds::closed_open(0.0, 1.0));

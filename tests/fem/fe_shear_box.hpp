@@ -38,6 +38,7 @@ struct ShearBoxOptions {
     bool check_tangent = false;                     // SolverSettings::check_tangent
     bool reuse_factorisation = false;               // SolverSettings::reuse_factorisation
     bool hold_slip_viscosity = false;               // SolverSettings::hold_slip_viscosity
+    int carry_cuts = 0;                             // SolverSettings::carry_cuts
     bool elastic_soil = false; // linear-elastic soil (E 1e5 kPa): only the interface can fail
     std::function<void(ContactPairSpec&)> adjust; // last changes to the contact pair
 };
@@ -115,6 +116,7 @@ inline ShearBox build_shear_box(const ShearBoxOptions& o) {
     settings.check_tangent = o.check_tangent;
     settings.reuse_factorisation = o.reuse_factorisation;
     settings.hold_slip_viscosity = o.hold_slip_viscosity;
+    settings.carry_cuts = o.carry_cuts;
     ShearBox box;
     box.solver = std::make_unique<StaticSolver>(mesh, std::vector<ElementSetMaterial>{plate, soil},
                                                 settings);
