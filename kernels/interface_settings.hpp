@@ -73,8 +73,9 @@ struct InterfaceSettings {
     // effect of polishing corrections taken far from the solution, fixed in session 19; since
     // then 1.3e4). With a Jacobian that learns the band's stiffness it converges in 2-4
     // iterations and takes 16x fewer sub-increments for the same model substeps
-    // (docs/large-scale-test.md, sessions 18-19). Off by default like the work bound above; 0.5
-    // in the §6 Sanisand scene.
+    // (docs/large-scale-test.md, sessions 18-19). Off by default like the work bound above. The
+    // §6 Sanisand scene took 0.5 until session 28; since session 29 it backtracks instead
+    // (newton_line_search): the "creeping" was a two-cycle across the yield cone.
     double newton_switch_ratio = 0.0;
     // What a creeping lane switches to: false, the perturbation Jacobian (k + 1 more evaluations
     // per iteration, each as dear as the base: the coarse hypoplastic run's contact time 2.2x);
