@@ -144,6 +144,45 @@ DirectResult<M> direct_update(const typename M::Params& mp, const InterfaceSetti
     return direct_update<M>(mp, s, start, in);
 }
 
+// One batched Algorithm 1 call (the SIMD path) with lane l's start state and input taken from
+// state_of(l) and input_of(l): the state and statistics after it, lane by lane.
+template <class M>
+struct BatchedResult {
+    InterfaceState<simd::batch, M::n_state> st;
+    InterfaceStats<simd::batch> stats;
+};
+template <class M, class StateOf, class InputOf>
+BatchedResult<M> batched_update(const typename M::Params& mp, const InterfaceSettings& s,
+                                StateOf state_of, InputOf input_of) {
+    using Batch = simd::batch;
+    auto batch_of = [](auto field) {
+        alignas(64) std::array<double, simd::lanes> v;
+        for (std::size_t l = 0; l < simd::lanes; ++l) {
+            v[l] = field(l);
+        }
+        return Batch::load_aligned(v.data());
+    };
+    BatchedResult<M> r;
+    for (int k = 0; k < M::n_state; ++k) {
+        r.st.y[k] = batch_of([&](std::size_t l) { return state_of(l).y[k]; });
+    }
+    r.st.eps_n = batch_of([&](std::size_t l) { return state_of(l).eps_n; });
+    r.st.eps_p1 = batch_of([&](std::size_t l) { return state_of(l).eps_p1; });
+    r.st.eps_p2 = batch_of([&](std::size_t l) { return state_of(l).eps_p2; });
+    r.st.gamma1 = batch_of([&](std::size_t l) { return state_of(l).gamma1; });
+    r.st.gamma2 = batch_of([&](std::size_t l) { return state_of(l).gamma2; });
+    r.st.last_subincrement = batch_of([&](std::size_t l) { return state_of(l).last_subincrement; });
+    const InterfaceInput<Batch> in{
+        batch_of([&](std::size_t l) { return input_of(l).t_N; }),
+        batch_of([&](std::size_t l) { return input_of(l).dg1; }),
+        batch_of([&](std::size_t l) { return input_of(l).dg2; }),
+        batch_of([&](std::size_t l) { return input_of(l).s_p1; }),
+        batch_of([&](std::size_t l) { return input_of(l).s_p2; }),
+        batch_of([&](std::size_t l) { return input_of(l).forced_subincrements; })};
+    interface_update<M, Batch>(mp, s, r.st, in, r.stats);
+    return r;
+}
+
 inline bool state_is_finite(const auto& y) {
     return std::all_of(y.begin(), y.end(), [](double v) { return std::isfinite(v); });
 }

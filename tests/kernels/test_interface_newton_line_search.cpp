@@ -22,7 +22,6 @@ using namespace ifsim::test;
 namespace {
 
 constexpr int NS = Sanisand::n_state;
-using Batch = simd::batch;
 constexpr std::size_t W = simd::lanes;
 
 // The committed state of point 170 at (1.2, 0.139, 0.903) m, from the run's replay.toml.
@@ -139,13 +138,6 @@ TEST(InterfaceNewtonLineSearch, BatchLaneMatchesScalarAndSparesItsNeighbours) {
     }
     const auto mp = karlsruhe_sanisand(1.0);
     const std::size_t hard = 1;
-    auto batch_of = [&](auto field) {
-        alignas(64) std::array<double, W> v;
-        for (std::size_t l = 0; l < W; ++l) {
-            v[l] = field(l);
-        }
-        return Batch::load_aligned(v.data());
-    };
     auto lane_state = [&](std::size_t l) {
         return l == hard ? band_on_its_cone() : ordinary_band();
     };
@@ -153,25 +145,8 @@ TEST(InterfaceNewtonLineSearch, BatchLaneMatchesScalarAndSparesItsNeighbours) {
         return l == hard ? the_call() : ordinary_call(static_cast<double>(l));
     };
     auto run = [&](const InterfaceSettings& s) {
-        InterfaceState<Batch, NS> st;
-        for (int k = 0; k < NS; ++k) {
-            st.y[k] = batch_of([&](std::size_t l) { return lane_state(l).y[k]; });
-        }
-        st.eps_n = batch_of([&](std::size_t l) { return lane_state(l).eps_n; });
-        st.eps_p1 = batch_of([&](std::size_t l) { return lane_state(l).eps_p1; });
-        st.eps_p2 = batch_of([&](std::size_t l) { return lane_state(l).eps_p2; });
-        st.gamma1 = batch_of([&](std::size_t l) { return lane_state(l).gamma1; });
-        st.gamma2 = batch_of([&](std::size_t l) { return lane_state(l).gamma2; });
-        const InterfaceInput<Batch> in{
-            batch_of([&](std::size_t l) { return lane_input(l).t_N; }),
-            batch_of([&](std::size_t l) { return lane_input(l).dg1; }),
-            batch_of([&](std::size_t l) { return lane_input(l).dg2; }),
-            batch_of([&](std::size_t l) { return lane_input(l).s_p1; }),
-            batch_of([&](std::size_t l) { return lane_input(l).s_p2; }),
-            batch_of([&](std::size_t l) { return lane_input(l).forced_subincrements; })};
-        InterfaceStats<Batch> stats;
-        interface_update<Sanisand, Batch>(mp, s, st, in, stats);
-        return std::pair{st, stats};
+        auto r = batched_update<Sanisand>(mp, s, lane_state, lane_input);
+        return std::pair{r.st, r.stats};
     };
     const auto [with, with_stats] = run(the_run_settings(4));
     const auto [without, without_stats] = run(the_run_settings(0));

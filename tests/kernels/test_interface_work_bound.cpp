@@ -20,7 +20,6 @@ using namespace ifsim::test;
 namespace {
 
 constexpr int NS = Sanisand::n_state;
-using Batch = simd::batch;
 constexpr std::size_t W = simd::lanes;
 
 // Rough point 48 of the coarse Sanisand run at (1.2, 0.0176, 1.0897), increment 8 (the first
@@ -193,31 +192,8 @@ TEST(InterfaceWorkBound, BatchLaneMatchesScalar) {
             inputs[l] = {t_N, 2.0e-4, -3.0e-5, 0.5 * t_N, 0.55 * t_N, 0.0};
         }
     }
-    auto batch_of = [&](auto field) {
-        alignas(64) std::array<double, W> v;
-        for (std::size_t l = 0; l < W; ++l) {
-            v[l] = field(l);
-        }
-        return Batch::load_aligned(v.data());
-    };
-    InterfaceState<Batch, NS> st;
-    for (int k = 0; k < NS; ++k) {
-        st.y[k] = batch_of([&](std::size_t l) { return lanes[l].y[k]; });
-    }
-    st.eps_n = batch_of([&](std::size_t l) { return lanes[l].eps_n; });
-    st.eps_p1 = batch_of([&](std::size_t l) { return lanes[l].eps_p1; });
-    st.eps_p2 = batch_of([&](std::size_t l) { return lanes[l].eps_p2; });
-    st.gamma1 = batch_of([&](std::size_t l) { return lanes[l].gamma1; });
-    st.gamma2 = batch_of([&](std::size_t l) { return lanes[l].gamma2; });
-    st.last_subincrement = batch_of([&](std::size_t l) { return lanes[l].last_subincrement; });
-    const InterfaceInput<Batch> in{batch_of([&](std::size_t l) { return inputs[l].t_N; }),
-                                   batch_of([&](std::size_t l) { return inputs[l].dg1; }),
-                                   batch_of([&](std::size_t l) { return inputs[l].dg2; }),
-                                   batch_of([&](std::size_t l) { return inputs[l].s_p1; }),
-                                   batch_of([&](std::size_t l) { return inputs[l].s_p2; }),
-                                   Batch(0.0)};
-    InterfaceStats<Batch> stats;
-    interface_update<Sanisand, Batch>(mp, s, st, in, stats);
+    const auto [st, stats] = batched_update<Sanisand>(
+        mp, s, [&](std::size_t l) { return lanes[l]; }, [&](std::size_t l) { return inputs[l]; });
     for (std::size_t l = 0; l < W; ++l) {
         const auto scalar = direct_update<Sanisand>(mp, s, lanes[l], inputs[l]);
         ASSERT_EQ(simd::lane(stats.status, l), scalar.stats.status) << "lane " << l;
