@@ -144,6 +144,18 @@ DirectResult<M> direct_update(const typename M::Params& mp, const InterfaceSetti
     return direct_update<M>(mp, s, start, in);
 }
 
+// A Sanisand band at 100 kPa sheared under slowly changing targets: Algorithm 1's rate Newton
+// contracts fast (the ordinary lanes beside a hard one in the Newton tests).
+inline InterfaceState<double, Sanisand::n_state> ordinary_sanisand_band() {
+    InterfaceState<double, Sanisand::n_state> st;
+    st.y = sanisand_state(-100.0, 0.5, 0.75);
+    return st;
+}
+inline InterfaceInput<double> ordinary_sanisand_call(double v) {
+    return {-100.0 - 2.0 * v, 1.0e-5 * (1.0 + 0.1 * v), 2.0e-6 * (v - 3.0),
+            -50.0 - v,        -49.0 + 0.5 * v,          0.0};
+}
+
 // One batched Algorithm 1 call (the SIMD path) with lane l's start state and input taken from
 // state_of(l) and input_of(l): the state and statistics after it, lane by lane.
 template <class M>

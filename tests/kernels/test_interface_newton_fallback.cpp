@@ -59,17 +59,6 @@ InterfaceInput<double> relaxed_targets() {
     return {t_N, 7.233582641787905e-07, -1.5712080454028545e-10, t_N, t_N, 56.0};
 }
 
-// A band at 100 kPa sheared under slowly changing targets: the rate Jacobian converges.
-InterfaceState<double, NS> ordinary_band() {
-    InterfaceState<double, NS> st;
-    st.y = sanisand_state(-100.0, 0.5, 0.75);
-    return st;
-}
-InterfaceInput<double> ordinary_call(double v) {
-    return {-100.0 - 2.0 * v, 1.0e-5 * (1.0 + 0.1 * v), 2.0e-6 * (v - 3.0),
-            -50.0 - v,        -49.0 + 0.5 * v,          0.0};
-}
-
 InterfaceSettings the_run_settings() {
     InterfaceSettings s; // the scene's: novel 3D, adaptive, d_s = 6 mm, rate Jacobian
     s.adaptive = true;
@@ -160,9 +149,9 @@ TEST(InterfaceNewtonFallback, ConvergingCallsAreUntouched) {
     off.newton_fallback = false;
     const InterfaceSettings on = the_run_settings();
     for (const double scale : {0.0, 3.0, 7.0}) {
-        const auto in = ordinary_call(scale);
-        const auto a = direct_update<Sanisand>(mp, off, ordinary_band(), in);
-        const auto b = direct_update<Sanisand>(mp, on, ordinary_band(), in);
+        const auto in = ordinary_sanisand_call(scale);
+        const auto a = direct_update<Sanisand>(mp, off, ordinary_sanisand_band(), in);
+        const auto b = direct_update<Sanisand>(mp, on, ordinary_sanisand_band(), in);
         ASSERT_EQ(a.stats.status, lane_status::ok) << scale;
         EXPECT_EQ(b.stats.newton_fallbacks, 0.0) << scale;
         for (int k = 0; k < NS; ++k) {
@@ -194,7 +183,7 @@ Batch gather(const std::array<InterfaceState<double, NS>, W>& lanes,
 BatchResult run_batch(const SanisandParams& mp, const InterfaceSettings& s, std::size_t hard) {
     std::array<InterfaceState<double, NS>, W> lanes;
     for (std::size_t l = 0; l < W; ++l) {
-        lanes[l] = l == hard ? band_near_cone() : ordinary_band();
+        lanes[l] = l == hard ? band_near_cone() : ordinary_sanisand_band();
     }
     InterfaceState<Batch, NS> st;
     for (int k = 0; k < NS; ++k) {
@@ -212,7 +201,8 @@ BatchResult run_batch(const SanisandParams& mp, const InterfaceSettings& s, std:
     st.gamma2 = gather(lanes, &S::gamma2);
     alignas(64) std::array<double, W> tn, g1, g2, p1, p2, forced;
     for (std::size_t l = 0; l < W; ++l) {
-        const auto in = l == hard ? relaxed_targets() : ordinary_call(static_cast<double>(l));
+        const auto in =
+            l == hard ? relaxed_targets() : ordinary_sanisand_call(static_cast<double>(l));
         tn[l] = in.t_N;
         g1[l] = in.dg1;
         g2[l] = in.dg2;

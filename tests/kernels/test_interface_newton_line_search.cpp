@@ -68,17 +68,6 @@ bool same_bits(double a, double b) {
     return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
-// A band at 100 kPa sheared under slowly changing targets: its rate Newton contracts fast.
-InterfaceState<double, NS> ordinary_band() {
-    InterfaceState<double, NS> st;
-    st.y = sanisand_state(-100.0, 0.5, 0.75);
-    return st;
-}
-InterfaceInput<double> ordinary_call(double v) {
-    return {-100.0 - 2.0 * v, 1.0e-5 * (1.0 + 0.1 * v), 2.0e-6 * (v - 3.0),
-            -50.0 - v,        -49.0 + 0.5 * v,          0.0};
-}
-
 } // namespace
 
 TEST(InterfaceNewtonLineSearch, BandOnItsConeFailsWithoutAndEndsWithBacktracking) {
@@ -118,9 +107,11 @@ TEST(InterfaceNewtonLineSearch, BandOnItsConeFailsWithoutAndEndsWithBacktracking
 TEST(InterfaceNewtonLineSearch, ContractingCallsAreUntouched) {
     const auto mp = karlsruhe_sanisand(1.0);
     for (const double v : {0.0, 3.0, 7.0}) {
-        const auto in = ordinary_call(v);
-        const auto off = direct_update<Sanisand>(mp, the_run_settings(0), ordinary_band(), in);
-        const auto on = direct_update<Sanisand>(mp, the_run_settings(4), ordinary_band(), in);
+        const auto in = ordinary_sanisand_call(v);
+        const auto off =
+            direct_update<Sanisand>(mp, the_run_settings(0), ordinary_sanisand_band(), in);
+        const auto on =
+            direct_update<Sanisand>(mp, the_run_settings(4), ordinary_sanisand_band(), in);
         ASSERT_EQ(off.stats.status, lane_status::ok) << v;
         EXPECT_EQ(on.stats.evaluations, off.stats.evaluations) << v;
         for (int k = 0; k < NS; ++k) {
@@ -139,10 +130,10 @@ TEST(InterfaceNewtonLineSearch, BatchLaneMatchesScalarAndSparesItsNeighbours) {
     const auto mp = karlsruhe_sanisand(1.0);
     const std::size_t hard = 1;
     auto lane_state = [&](std::size_t l) {
-        return l == hard ? band_on_its_cone() : ordinary_band();
+        return l == hard ? band_on_its_cone() : ordinary_sanisand_band();
     };
     auto lane_input = [&](std::size_t l) {
-        return l == hard ? the_call() : ordinary_call(static_cast<double>(l));
+        return l == hard ? the_call() : ordinary_sanisand_call(static_cast<double>(l));
     };
     auto run = [&](const InterfaceSettings& s) {
         auto r = batched_update<Sanisand>(mp, s, lane_state, lane_input);
